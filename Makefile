@@ -1,0 +1,218 @@
+# drawbead -- build and test (GNU make >= 4.0; see docs/BUILD.md)
+#
+#   make                 build bin/drawbead (release flags) in build/
+#   make -j2 test        build, run the .pf suites and the tests/*.sh scripts
+#   make check-build     build bin/drawbead-check in build-check/ (checked flags)
+#   make test-check      run the whole test suite with the checked build
+#   make run [DECK=...]  run bin/drawbead on $(DECK)
+#   make clean           remove build/, build-check/, bin/ and out/
+#   make help            list the targets and variables
+#
+# Variables (override on the command line): FC, FFLAGS, CHECK_FFLAGS,
+# LDFLAGS, LDLIBS, DECK, PFUNIT_DIR (a pFUnit 4 install: the folder holding
+# include/PFUNIT.mk; without it the tests use tests/pfunit_lite.py).
+
+# make's built-in FC is f77 (origin "default"; "undefined" under make -R)
+ifneq (,$(filter default undefined,$(origin FC)))
+FC := gfortran
+endif
+AR ?= ar
+PYTHON ?= python3
+
+RELEASE_FFLAGS := -std=f2008 -fimplicit-none -Wall -Wextra -Wimplicit-interface -O2 -g
+CHECK_FFLAGS ?= -std=f2008 -fimplicit-none -Wall -Wextra -Wimplicit-interface \
+                -O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace \
+                -finit-real=snan
+FFLAGS ?= $(RELEASE_FFLAGS)
+LDFLAGS ?=
+LDLIBS ?= -llapack -lblas
+DECK ?= input/strip_tension.nml
+
+# Where this build goes; check-build and test-check re-run make with
+# BUILD=build-check BIN=bin/drawbead-check FFLAGS=$(CHECK_FFLAGS).
+BUILD ?= build
+BIN ?= bin/drawbead
+
+# ---------------------------------------------------------------------------
+# Sources: every src/*.f90 goes into the library except the main program
+# ---------------------------------------------------------------------------
+MAIN_SRC := src/drawbead.f90
+ALL_SRCS := $(sort $(wildcard src/*.f90))
+LIB_SRCS := $(filter-out $(MAIN_SRC),$(ALL_SRCS))
+LIB_OBJS := $(patsubst src/%.f90,$(BUILD)/%.o,$(LIB_SRCS))
+MAIN_OBJ := $(BUILD)/drawbead.o
+LIB := $(BUILD)/libdrawbead.a
+DEPS := $(BUILD)/deps.mk
+
+# Tests: the .pf suites, compiled without -std=f2008 and with long lines
+PF_SRCS := $(sort $(wildcard tests/test_*.pf))
+TEST_SCRIPTS := $(sort $(wildcard tests/*.sh))
+TEST_DIR := $(BUILD)/tests
+TEST_FFLAGS = $(filter-out -std=%,$(FFLAGS)) -ffree-line-length-none
+
+# Goals that need no generated makefiles in $(BUILD) (the checked goals
+# re-run make with BUILD=build-check, which does generate them there)
+NO_DEPS_GOALS := clean help check-build test-check
+NEED_DEPS := $(filter-out $(NO_DEPS_GOALS),$(or $(MAKECMDGOALS),all))
+
+.PHONY: all release lib check-build test test-check run clean help FORCE
+.DELETE_ON_ERROR:
+
+all: $(BIN)
+
+release: all
+
+lib: $(LIB)
+
+# ---------------------------------------------------------------------------
+# Library and program
+# ---------------------------------------------------------------------------
+# $(FLAGS_STAMP) holds the compiler and flags of the last build here; it is
+# rewritten (and everything recompiled) when they change.
+FLAGS_STAMP := $(BUILD)/flags.txt
+ifneq (,$(NEED_DEPS))
+$(shell mkdir -p $(BUILD) && { echo '$(FC) $(FFLAGS)' | cmp -s - $(FLAGS_STAMP) || echo '$(FC) $(FFLAGS)' > $(FLAGS_STAMP); })
+endif
+
+$(FLAGS_STAMP):
+	@mkdir -p $(@D)
+	echo '$(FC) $(FFLAGS)' > $@
+
+$(BUILD)/%.o: src/%.f90 $(FLAGS_STAMP)
+	$(FC) $(FFLAGS) -J $(BUILD) -c -o $@ $<
+
+# Rebuilt from scratch so that objects of deleted sources do not linger;
+# $(DEPS) changes whenever the list of sources does.
+$(LIB): $(LIB_OBJS) $(DEPS)
+	rm -f $@
+	$(AR) rcs $@ $(LIB_OBJS)
+
+ifneq (,$(wildcard $(MAIN_SRC)))
+$(BIN): $(MAIN_OBJ) $(LIB)
+	@mkdir -p $(@D)
+	$(FC) $(FFLAGS) $(LDFLAGS) -o $@ $(MAIN_OBJ) $(LIB) $(LDLIBS)
+TEST_NEEDS_BIN := $(BIN)
+else
+$(BIN):
+	@echo "make: $(MAIN_SRC) (the main program) does not exist yet" >&2; exit 1
+TEST_NEEDS_BIN :=
+endif
+
+# Module dependencies (object -> object), from the use/module statements.
+# deps.mk records the source list it was made from; a changed list (file
+# added or removed) forces it to be regenerated.
+$(DEPS): $(ALL_SRCS) scripts/f90deps.py
+	@mkdir -p $(@D)
+	$(PYTHON) scripts/f90deps.py --objdir $(BUILD) -o $@ $(ALL_SRCS)
+
+ifneq (,$(NEED_DEPS))
+include $(DEPS)
+ifneq ($(strip $(DEPS_SRCS)),$(strip $(ALL_SRCS)))
+$(DEPS): FORCE
+endif
+endif
+
+FORCE:
+
+# ---------------------------------------------------------------------------
+# Tests
+# ---------------------------------------------------------------------------
+ifneq (,$(strip $(PFUNIT_DIR)))
+# Real pFUnit: tests/Makefile runs inside $(BUILD)/pfunit (it finds the .pf
+# files through vpath) and links $(BUILD)/pfunit/drawbead_tests.
+RUNNER := $(BUILD)/pfunit/drawbead_tests
+
+$(RUNNER): $(LIB) FORCE
+	@mkdir -p $(BUILD)/pfunit
+	$(MAKE) -C $(BUILD)/pfunit -f $(CURDIR)/tests/Makefile drawbead_tests \
+	    PFUNIT_DIR='$(abspath $(PFUNIT_DIR))' TESTS_DIR='$(CURDIR)/tests' \
+	    FC='$(FC)' PF_FFLAGS='$(TEST_FFLAGS) -I$(abspath $(BUILD))' \
+	    DRAWBEAD_LIB='$(abspath $(LIB))' LDLIBS='$(LDLIBS)'
+else
+# pfunit_lite: tests/test_X.pf -> $(TEST_DIR)/test_X.f90, plus a driver
+# $(TEST_DIR)/run_tests.f90 and the funit module of tests/funit_lite.f90.
+LITE := tests/pfunit_lite.py
+PF_F90 := $(patsubst tests/%.pf,$(TEST_DIR)/%.f90,$(PF_SRCS))
+PF_OBJS := $(PF_F90:.f90=.o)
+RUNNER := $(TEST_DIR)/run_tests
+PF_LIST := $(TEST_DIR)/pf_list.txt
+
+# a file holding the list of suites, rewritten only when the list changes,
+# so that adding or removing a .pf file regenerates the driver
+ifneq (,$(NEED_DEPS))
+$(shell mkdir -p $(TEST_DIR) && { echo '$(PF_SRCS)' | cmp -s - $(PF_LIST) || echo '$(PF_SRCS)' > $(PF_LIST); })
+endif
+
+$(PF_LIST):
+	@mkdir -p $(@D)
+	echo '$(PF_SRCS)' > $@
+
+$(TEST_DIR)/%.f90: tests/%.pf $(LITE)
+	$(PYTHON) $(LITE) convert $< $@
+
+$(TEST_DIR)/funit.o: tests/funit_lite.f90 $(FLAGS_STAMP)
+	@mkdir -p $(@D)
+	$(FC) $(TEST_FFLAGS) -J $(TEST_DIR) -c -o $@ $<
+
+$(PF_OBJS): $(TEST_DIR)/%.o: $(TEST_DIR)/%.f90 $(TEST_DIR)/funit.o $(LIB)
+	$(FC) $(TEST_FFLAGS) -I $(BUILD) -J $(TEST_DIR) -c -o $@ $<
+
+$(TEST_DIR)/run_tests.f90: $(PF_SRCS) $(PF_LIST) $(LITE)
+	$(PYTHON) $(LITE) driver $@ $(PF_SRCS)
+
+$(TEST_DIR)/run_tests.o: $(TEST_DIR)/run_tests.f90 $(PF_OBJS) $(TEST_DIR)/funit.o
+	$(FC) $(TEST_FFLAGS) -J $(TEST_DIR) -c -o $@ $<
+
+$(RUNNER): $(TEST_DIR)/run_tests.o $(PF_OBJS) $(TEST_DIR)/funit.o $(LIB)
+	$(FC) $(TEST_FFLAGS) $(LDFLAGS) -o $@ $(TEST_DIR)/run_tests.o $(PF_OBJS) \
+	    $(TEST_DIR)/funit.o $(LIB) $(LDLIBS)
+endif
+
+# Runs every suite, then every tests/*.sh (with bash, from the top directory;
+# the program's absolute path is both the first argument and $DRAWBEAD);
+# fails if anything fails.
+test: $(RUNNER) $(TEST_NEEDS_BIN)
+	@status=0; \
+	echo "== $(RUNNER)"; \
+	DRAWBEAD='$(abspath $(BIN))' $(RUNNER) || status=1; \
+	for script in $(TEST_SCRIPTS); do \
+	    echo "== bash $$script"; \
+	    if DRAWBEAD='$(abspath $(BIN))' bash "$$script" '$(abspath $(BIN))'; then \
+	        echo "ok: $$script"; \
+	    else \
+	        echo "FAILED: $$script"; status=1; \
+	    fi; \
+	done; \
+	if [ $$status -ne 0 ]; then echo "make test: FAILURES (see above)"; fi; \
+	exit $$status
+
+# ---------------------------------------------------------------------------
+# Checked build: the same rules, another build directory and flags
+# ---------------------------------------------------------------------------
+CHECK_VARS = BUILD=build-check BIN=bin/drawbead-check FFLAGS='$(CHECK_FFLAGS)'
+
+check-build:
+	$(MAKE) $(CHECK_VARS) all
+
+test-check:
+	$(MAKE) $(CHECK_VARS) test
+
+# ---------------------------------------------------------------------------
+run: $(BIN)
+	$(BIN) $(DECK)
+
+clean:
+	rm -rf build build-check bin out
+
+help:
+	@echo "Targets:"
+	@echo "  all (default), release  build $(BIN) with FFLAGS in $(BUILD)/"
+	@echo "  lib                     build $(LIB) only"
+	@echo "  test                    build and run tests/test_*.pf and tests/*.sh"
+	@echo "  check-build             build bin/drawbead-check in build-check/ with CHECK_FFLAGS"
+	@echo "  test-check              run the whole test suite with the checked build"
+	@echo "  run                     run $(BIN) $(DECK)"
+	@echo "  clean                   remove build/ build-check/ bin/ out/"
+	@echo "Variables: FC=$(FC) LDLIBS=$(LDLIBS) DECK=$(DECK) PFUNIT_DIR=$(PFUNIT_DIR)"
+	@echo "  FFLAGS=$(FFLAGS)"
+	@echo "  CHECK_FFLAGS=$(CHECK_FFLAGS)"

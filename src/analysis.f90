@@ -1,0 +1,225 @@
+!> analysis -- the load schedule of a run: locking, pulling, adaptive
+!> increments, localization (tearing) detection and the per-increment output.
+!>
+!> Phase 'lock': the lower tool rises by H (load parameter), right edge held.
+!> Phase 'pull': tools held at H = lock depth, right edge pulled by delta.
+!> Left edge clamped (v = w = w' = 0) or free (w = w' = 0, axial force
+!> -back_tension applied).  DESIGN §1, §7, §8.
+module analysis
+   use kinds, only: dp, output_unit
+   use deck, only: deck_type
+   use hermite, only: n_gauss
+   use band, only: band_matrix, band_init
+   use mesh, only: half_band
+   use model, only: model_type, state_type, load_type, load_init, gauss_position
+   use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
+                     newton_singular
+   use output, only: output_files, write_row
+   implicit none
+   private
+   public :: run_record, run_phase, phase_load, run_record_init
+
+   !> What the run has found so far (written to summary.txt).
+   type :: run_record
+      logical :: localized = .false.
+      character(len=8) :: loc_phase = ''
+      real(dp) :: load_cr = 0.0_dp, s_star = 0.0_dp
+      real(dp) :: peak_force = 0.0_dp, lock_force = 0.0_dp, last_force = 0.0_dp
+      real(dp) :: last_lift = 0.0_dp
+      integer :: increments = 0, newton_iterations = 0, cutbacks = 0
+      integer :: status = 0                       ! 0 ok, 2 no convergence
+      character(len=200) :: message = ''
+      real(dp), allocatable :: pull_delta(:), pull_force(:)
+      integer :: n_pull = 0
+      real(dp) :: min_indicator = 1.0_dp
+      real(dp) :: max_penetration = 0.0_dp
+   end type run_record
+
+contains
+
+   !> RUN_RECORD_INIT: empty record with room for the pull history.
+   subroutine run_record_init(rec)
+      type(run_record), intent(out) :: rec
+      allocate (rec%pull_delta(1024), rec%pull_force(1024))
+   end subroutine run_record_init
+
+   !> PHASE_LOAD: boundary conditions and loads of a phase at load parameter p.
+   !>  m      [in]  model
+   !>  d      [in]  deck (edges, back tension, lock depth)
+   !>  phase  [in]  'lock' (p = H) or 'pull' (p = delta)
+   !>  p      [in]  load parameter, mm
+   !>  ld     [out] the load
+   subroutine phase_load(m, d, phase, p, ld)
+      type(model_type), intent(in) :: m
+      type(deck_type), intent(in) :: d
+      character(len=*), intent(in) :: phase
+      real(dp), intent(in) :: p
+      type(load_type), intent(out) :: ld
+      integer :: nr
+      call load_init(m, ld)
+      nr = m%n_dof - 4
+      ! left edge: (v, v', w, w') = dofs 1..4
+      ld%fixed([3, 4]) = .true.
+      if (d%left_edge == 'clamped') then
+         ld%fixed(1) = .true.
+      else
+         ld%f_ext(1) = -d%back_tension
+      end if
+      ! right edge: v, w, w'
+      ld%fixed(nr + [1, 3, 4]) = .true.
+      if (phase == 'pull') then
+         ld%u_fixed(nr + 1) = p
+         ld%tool_shift = d%lock_depth
+      else
+         ld%tool_shift = p
+      end if
+   end subroutine phase_load
+
+   !> RUN_PHASE: advance the load parameter from p0 to p1 with adaptive
+   !> increments; commit, check localization and write a row per increment.
+   !>  m     [in]  model
+   !>  d     [in]  deck (increments, tolerances, stop_at_localization)
+   !>  s     [in,out] state, converged at p0 on entry
+   !>  phase [in]  'lock' or 'pull'
+   !>  p0,p1 [in]  start and end of the load parameter
+   !>  out   [in]  open output files
+   !>  rec   [in,out] run record
+   subroutine run_phase(m, d, s, phase, p0, p1, out, rec)
+      type(model_type), intent(in) :: m
+      type(deck_type), intent(in) :: d
+      type(state_type), intent(inout) :: s
+      character(len=*), intent(in) :: phase
+      real(dp), intent(in) :: p0, p1
+      type(output_files), intent(in) :: out
+      type(run_record), intent(inout) :: rec
+      type(band_matrix) :: kb
+      type(load_type) :: ld
+      type(newton_result) :: nr
+      real(dp) :: p, dt, dt_prev, h, eh, r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el)
+      real(dp) :: reaction, punch, lift, pen, frac, best, min_ind
+      integer :: e, ig, e_cr, ig_cr
+      logical :: have_prev
+      character(len=16) :: tag
+      h = m%thickness
+      eh = m%youngs*h
+      call band_init(kb, m%n_dof, half_band, half_band)
+      p = p0
+      dt = d%initial_increment
+      dt_prev = dt
+      have_prev = .false.
+      do while (p < p1 - 1.0e-12_dp*h)
+         dt = min(dt, p1 - p)
+         call phase_load(m, d, phase, p + dt, ld)
+         if (have_prev) then
+            s%u1 = s%u + (dt/dt_prev)*(s%u - u_prev)
+         else
+            s%u1 = s%u
+         end if
+         call newton_solve(m, s, ld, kb, r, d%max_iterations, d%tolerance, nr)
+         rec%newton_iterations = rec%newton_iterations + nr%iterations
+         if (nr%status /= newton_ok) then
+            rec%cutbacks = rec%cutbacks + 1
+            select case (nr%status)
+            case (newton_cutback)
+               tag = 'material cut'
+            case (newton_singular)
+               tag = 'singular'
+            case default
+               tag = 'diverged'
+            end select
+            write (output_unit, '(a5,1x,a,es10.3,a,i3,a,es9.2,2a)') phase, 'cutback  d/h=', dt/h, &
+               '  it', nr%iterations, '  res', nr%residual(nr%iterations), '  ', trim(tag)
+            dt = 0.25_dp*dt
+            have_prev = .false.
+            s%u1 = s%u
+            if (dt < d%min_increment) then
+               rec%status = 2
+               write (rec%message, '(3a,es10.3,a)') 'no convergence in ', phase, &
+                  ' at load/h = ', p/h, ': increment below min_increment'
+               return
+            end if
+            cycle
+         end if
+         ind_old = s%indicator
+         u_prev = s%u
+         dt_prev = dt
+         call commit_state(m, s, ld%tool_shift)
+         p = p + dt
+         rec%increments = rec%increments + 1
+         ! forces: N = internal force at the pulled dof, F = lower tool upward
+         ! force on the sheet, lift = upward force of the sheet on the upper tool
+         reaction = r(m%n_dof - 3)
+         punch = s%tool_force(2, 2)
+         lift = -s%tool_force(2, 1)
+         pen = 0.0_dp
+         if (m%has_tools) pen = maxval(s%cn(8, :, :, :))/h
+         rec%max_penetration = max(rec%max_penetration, pen)
+         min_ind = minval(s%indicator)
+         rec%min_indicator = min_ind
+         ! localization (3.1): first Gauss station whose indicator crosses zero,
+         ! interpolated linearly inside the increment
+         if (.not. rec%localized) then
+            best = 2.0_dp
+            e_cr = 0; ig_cr = 0
+            do e = 1, m%n_el
+               do ig = 1, n_gauss
+                  if (ind_old(ig, e) > 0.0_dp .and. s%indicator(ig, e) <= 0.0_dp) then
+                     frac = ind_old(ig, e)/(ind_old(ig, e) - s%indicator(ig, e))
+                     if (frac < best) then
+                        best = frac; e_cr = e; ig_cr = ig
+                     end if
+                  end if
+               end do
+            end do
+            if (e_cr > 0) then
+               rec%localized = .true.
+               rec%loc_phase = phase
+               rec%load_cr = p - dt + best*dt
+               rec%s_star = gauss_position(m, e_cr, ig_cr)
+            end if
+         end if
+         if (phase == 'lock') then
+            rec%lock_force = punch
+            call write_row(out%lock, [p/h, punch/eh, punch, real(nr%iterations, dp), dt/h, &
+                                      min_ind, pen, reaction/eh, reaction])
+         else
+            rec%peak_force = max(rec%peak_force, reaction)
+            rec%last_force = reaction
+            rec%last_lift = lift
+            call record_pull(rec, p, reaction)
+            call write_row(out%pull, [p/h, reaction/eh, reaction, real(nr%iterations, dp), &
+                                      dt/h, min_ind, lift/eh, lift, pen, punch/eh])
+         end if
+         write (output_unit, '(a5,i6,a,es11.4,a,es9.2,a,i3,a,es9.2,a,es10.3,a,es11.4,a)') &
+            phase, rec%increments, '  load/h=', p/h, '  d/h=', dt/h, '  it', nr%iterations, &
+            '  res', nr%residual(nr%iterations), '  loc', min_ind, '  force/Eh=', &
+            merge(punch, reaction, phase == 'lock')/eh, merge(' LOCALIZED', '          ', &
+                                                              rec%localized .and. rec%loc_phase == phase .and. e_cr > 0)
+         if (rec%localized .and. d%stop_at_localization) return
+         if (nr%iterations <= 4) then
+            dt = min(1.5_dp*dt, d%max_increment)
+         else if (nr%iterations >= 8) then
+            dt = max(0.6_dp*dt, d%min_increment)
+         end if
+         have_prev = .true.
+      end do
+   end subroutine run_phase
+
+   !> RECORD_PULL: append (delta, N) to the pull history, growing it as needed.
+   subroutine record_pull(rec, delta, force)
+      type(run_record), intent(inout) :: rec
+      real(dp), intent(in) :: delta, force
+      real(dp), allocatable :: tmp(:)
+      if (rec%n_pull == size(rec%pull_delta)) then
+         allocate (tmp(2*rec%n_pull))
+         tmp(1:rec%n_pull) = rec%pull_delta
+         call move_alloc(tmp, rec%pull_delta)
+         allocate (tmp(2*rec%n_pull))
+         tmp(1:rec%n_pull) = rec%pull_force
+         call move_alloc(tmp, rec%pull_force)
+      end if
+      rec%n_pull = rec%n_pull + 1
+      rec%pull_delta(rec%n_pull) = delta
+      rec%pull_force(rec%n_pull) = force
+   end subroutine record_pull
+end module analysis

@@ -1,0 +1,82 @@
+!> element -- the Hermite shell element: residual and consistent tangent.
+!>
+!> Element dofs, node by node: (v1, v1', w1, w1', v2, v2', w2, w2').
+!> Internal virtual work per unit reference length N d(eps) + M d(rho) (2.8)-(2.10):
+!>   r = int (N B_eps + M B_rho) ds
+!>   K = int (B^T C B + N d2eps/dq2 + M d2rho/dq2) ds        (DESIGN §2)
+!> with B = d(eps, rho)/dq and 4-point Gauss quadrature (paper §4).
+module element
+   use kinds, only: dp
+   use hermite, only: n_gauss, gauss_xi, gauss_wt, hermite_shape
+   use kinematics, only: strain_measures
+   use section, only: section_response
+   implicit none
+   private
+   public :: element_internal, element_gradients, v_dofs, w_dofs
+
+   integer, parameter :: v_dofs(4) = [1, 2, 5, 6], w_dofs(4) = [3, 4, 7, 8]
+
+contains
+
+   !> ELEMENT_GRADIENTS: g = (1 + v', w', v'', w'') at local coordinate xi and
+   !> the matrix G = dg/dq (g is affine in the element dofs q).
+   !>  xi  [in]  local coordinate in [0, 1]
+   !>  le  [in]  element length
+   !>  ul  [in]  element dofs
+   !>  g   [out] (a, b, c, d)
+   !>  gm  [out] G(4, 8)
+   pure subroutine element_gradients(xi, le, ul, g, gm)
+      real(dp), intent(in) :: xi, le, ul(8)
+      real(dp), intent(out) :: g(4), gm(4, 8)
+      real(dp) :: n(4), dn(4), d2n(4)
+      call hermite_shape(xi, le, n, dn, d2n)
+      gm = 0.0_dp
+      gm(1, v_dofs) = dn
+      gm(2, w_dofs) = dn
+      gm(3, v_dofs) = d2n
+      gm(4, w_dofs) = d2n
+      g = matmul(gm, ul)
+      g(1) = g(1) + 1.0_dp
+   end subroutine element_gradients
+
+   !> ELEMENT_INTERNAL: internal force vector and tangent of one element.
+   !>  le     [in]  reference element length
+   !>  ul     [in]  element dofs (trial state)
+   !>  wz     [in]  Simpson weights through the thickness
+   !>  props  [in]  material constants
+   !>  hn     [in]  converged history (n_hist, npt, n_gauss)
+   !>  h1     [out] trial history
+   !>  re     [out] internal force vector (8)
+   !>  ke     [out] tangent (8, 8)
+   !>  gp     [out] per Gauss point: eps, rho, N, M
+   !>  pnewdt [in,out] < 1 on return if the increment must be cut
+   pure subroutine element_internal(le, ul, wz, props, hn, h1, re, ke, gp, pnewdt)
+      real(dp), intent(in) :: le, ul(8), wz(:), props(:), hn(:, :, :)
+      real(dp), intent(out) :: h1(:, :, :), re(8), ke(8, 8), gp(4, n_gauss)
+      real(dp), intent(inout) :: pnewdt
+      real(dp) :: g(4), gm(4, 8), eps, rho, deps(4), drho(4), d2eps(4, 4), d2rho(4, 4)
+      real(dp) :: force, moment, c(2, 2), beps(8), brho(8), hg(4, 4), dv
+      integer :: ig, i
+      re = 0.0_dp
+      ke = 0.0_dp
+      gp = 0.0_dp
+      do ig = 1, n_gauss
+         call element_gradients(gauss_xi(ig), le, ul, g, gm)
+         call strain_measures(g, eps, rho, deps, drho, d2eps, d2rho)
+         call section_response(eps, rho, wz, props, hn(:, :, ig), h1(:, :, ig), &
+                               force, moment, c, pnewdt)
+         if (pnewdt < 1.0_dp) return
+         gp(:, ig) = [eps, rho, force, moment]
+         dv = gauss_wt(ig)*le
+         beps = matmul(deps, gm)
+         brho = matmul(drho, gm)
+         re = re + dv*(force*beps + moment*brho)
+         hg = force*d2eps + moment*d2rho
+         do i = 1, 8
+            ke(:, i) = ke(:, i) + dv*(beps*(c(1, 1)*beps(i) + c(1, 2)*brho(i)) &
+                                      + brho*(c(2, 1)*beps(i) + c(2, 2)*brho(i)))
+         end do
+         ke = ke + dv*matmul(transpose(gm), matmul(hg, gm))
+      end do
+   end subroutine element_internal
+end module element

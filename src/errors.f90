@@ -1,0 +1,86 @@
+!> errors -- collected input errors, warnings and exit codes.
+!>
+!> Input errors are not fatal where they are found: each is appended to an
+!> error_list, and the main program reports them all at once (FEAP style,
+!> one `*ERROR* ...` line each) and stops with exit status exit_input.
+!> Warnings are printed at once to error_unit as `*WARNING* ...`.
+!> The module holds no state; every list belongs to its caller.
+module errors
+   use kinds, only: error_unit
+   implicit none
+   private
+   public :: exit_ok, exit_input, exit_noconvergence
+   public :: error_message, error_list
+   public :: add_error, report_errors, warn
+
+   !> Exit status of the program: success.
+   integer, parameter :: exit_ok = 0
+   !> Exit status of the program: the input deck (or a file it names) is bad.
+   integer, parameter :: exit_input = 1
+   !> Exit status of the program: the increment loop could not converge.
+   integer, parameter :: exit_noconvergence = 2
+
+   !> One message of any length.
+   type :: error_message
+      character(len=:), allocatable :: text
+   end type error_message
+
+   !> A growing list of messages: messages(1:count) are in use.
+   type :: error_list
+      type(error_message), allocatable :: messages(:)
+      integer :: count = 0
+   end type error_list
+
+contains
+
+   !> add_error -- append a message to an error list.
+   !>
+   !> list  [in,out] the list; grows as needed, count increases by one.
+   !> msg   [in]     the message, without the `*ERROR*` prefix; trailing
+   !>                blanks are dropped.
+   subroutine add_error(list, msg)
+      type(error_list), intent(inout) :: list
+      character(len=*), intent(in) :: msg
+
+      type(error_message), allocatable :: grown(:)
+      integer :: i
+
+      if (.not. allocated(list%messages)) then
+         allocate (list%messages(8))
+         list%count = 0
+      else if (list%count >= size(list%messages)) then
+         allocate (grown(2*size(list%messages)))
+         do i = 1, list%count
+            call move_alloc(list%messages(i)%text, grown(i)%text)
+         end do
+         call move_alloc(grown, list%messages)
+      end if
+      list%count = list%count + 1
+      list%messages(list%count)%text = trim(msg)
+   end subroutine add_error
+
+   !> report_errors -- print every message of a list as `*ERROR* <msg>`.
+   !>
+   !> list  [in] the list; nothing is printed when it is empty.
+   !> unit  [in] an open formatted unit (usually error_unit).
+   subroutine report_errors(list, unit)
+      type(error_list), intent(in) :: list
+      integer, intent(in) :: unit
+
+      integer :: i
+
+      do i = 1, list%count
+         write (unit, '(a)') '*ERROR* '//list%messages(i)%text
+      end do
+   end subroutine report_errors
+
+   !> warn -- print `*WARNING* <msg>` to error_unit at once.
+   !>
+   !> msg  [in] the warning text; trailing blanks are dropped.
+   subroutine warn(msg)
+      character(len=*), intent(in) :: msg
+
+      write (error_unit, '(a)') '*WARNING* '//trim(msg)
+   end subroutine warn
+
+end module errors

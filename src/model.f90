@@ -1,0 +1,120 @@
+!> model -- the two derived types that carry a run: the fixed model and the
+!> evolving state (converged and trial copies, FEAP's hn/h1).
+module model
+   use kinds, only: dp
+   use hermite, only: n_gauss, gauss_xi, simpson_rule
+   use mesh, only: graded_nodes, dofs_per_node
+   use section, only: n_hist, section_init
+   use tools, only: tool_type
+   implicit none
+   private
+   public :: model_type, state_type, load_type, model_init, state_init, load_init, &
+             n_chist, gauss_position
+
+   !> contact history per Gauss station and tool (layout in module contact)
+   integer, parameter :: n_chist = 9
+
+   type :: model_type
+      integer :: n_el = 0, n_nodes = 0, n_dof = 0, npt = 0
+      real(dp) :: thickness = 0.0_dp, length = 0.0_dp, youngs = 0.0_dp
+      real(dp), allocatable :: x(:)          ! reference node positions
+      real(dp), allocatable :: z(:), wz(:)   ! Simpson stations and weights
+      real(dp), allocatable :: props(:)      ! UMAT constants
+      ! tools and contact (bead /= 'none')
+      logical :: has_tools = .false.
+      type(tool_type) :: tool(2)             ! 1 upper (fixed), 2 lower (moves by H)
+      real(dp) :: penalty = 0.0_dp           ! k, N/mm^3 (force per ref length per mm)
+      real(dp) :: friction = 0.0_dp          ! mu
+      real(dp) :: friction_eps = 1.0_dp      ! eps of (4.3), mm
+   end type model_type
+
+   !> What is applied in one increment: prescribed dofs, dead loads, an end
+   !> moment (conservative: work M*theta at node moment_node) and the rise of
+   !> the lower tool.
+   type :: load_type
+      logical, allocatable :: fixed(:)
+      real(dp), allocatable :: u_fixed(:)
+      real(dp), allocatable :: f_ext(:)
+      integer :: moment_node = 0
+      real(dp) :: moment = 0.0_dp
+      real(dp) :: tool_shift = 0.0_dp
+   end type load_type
+
+   type :: state_type
+      real(dp), allocatable :: u(:), u1(:)               ! converged, trial dofs
+      real(dp), allocatable :: hn(:, :, :, :), h1(:, :, :, :) ! (n_hist, npt, n_gauss, n_el)
+      real(dp), allocatable :: cn(:, :, :, :), c1(:, :, :, :) ! (n_chist, n_gauss, n_el, 2)
+      real(dp), allocatable :: gp(:, :, :)               ! (eps, rho, N, M) at Gauss points, trial
+      real(dp), allocatable :: indicator(:, :)           ! localization indicator, converged
+      real(dp) :: shift = 0.0_dp                         ! converged lower-tool rise H
+      real(dp) :: tool_force(2, 2) = 0.0_dp              ! (x, y) force of tool 1, 2 on the sheet, trial
+   end type state_type
+
+contains
+
+   !> MODEL_INIT: mesh, quadrature and material of a tool-free sheet.
+   !>  m        [out] the model
+   !>  n_el     [in]  number of elements
+   !>  length   [in]  2L, mm
+   !>  beta     [in]  mesh grading exponent (4.2)
+   !>  h        [in]  thickness, mm
+   !>  npt      [in]  Simpson stations through the thickness
+   !>  props    [in]  UMAT constants (props(1) = E)
+   subroutine model_init(m, n_el, length, beta, h, npt, props)
+      type(model_type), intent(out) :: m
+      integer, intent(in) :: n_el, npt
+      real(dp), intent(in) :: length, beta, h, props(:)
+      m%n_el = n_el
+      m%n_nodes = n_el + 1
+      m%n_dof = dofs_per_node*m%n_nodes
+      m%npt = npt
+      m%thickness = h
+      m%length = length
+      m%youngs = props(1)
+      allocate (m%x(m%n_nodes), m%z(npt), m%wz(npt))
+      call graded_nodes(n_el, 0.5_dp*length, beta, m%x)
+      call simpson_rule(npt, h, m%z, m%wz)
+      m%props = props
+   end subroutine model_init
+
+   !> STATE_INIT: undeformed, stress-free state.
+   subroutine state_init(m, s)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(out) :: s
+      integer :: e, ig
+      allocate (s%u(m%n_dof), s%u1(m%n_dof))
+      allocate (s%hn(n_hist, m%npt, n_gauss, m%n_el))
+      allocate (s%cn(n_chist, n_gauss, m%n_el, 2))
+      allocate (s%gp(4, n_gauss, m%n_el), s%indicator(n_gauss, m%n_el))
+      s%u = 0.0_dp
+      s%u1 = 0.0_dp
+      do e = 1, m%n_el
+         do ig = 1, n_gauss
+            call section_init(m%z, s%hn(:, :, ig, e))
+         end do
+      end do
+      s%h1 = s%hn
+      s%cn = 0.0_dp
+      s%c1 = s%cn
+      s%gp = 0.0_dp
+      s%indicator = 1.0_dp
+   end subroutine state_init
+
+   !> LOAD_INIT: nothing fixed, no loads.
+   subroutine load_init(m, ld)
+      type(model_type), intent(in) :: m
+      type(load_type), intent(out) :: ld
+      allocate (ld%fixed(m%n_dof), ld%u_fixed(m%n_dof), ld%f_ext(m%n_dof))
+      ld%fixed = .false.
+      ld%u_fixed = 0.0_dp
+      ld%f_ext = 0.0_dp
+   end subroutine load_init
+
+   !> GAUSS_POSITION: reference abscissa of Gauss point ig of element e.
+   pure function gauss_position(m, e, ig) result(xg)
+      type(model_type), intent(in) :: m
+      integer, intent(in) :: e, ig
+      real(dp) :: xg
+      xg = m%x(e) + gauss_xi(ig)*(m%x(e + 1) - m%x(e))
+   end function gauss_position
+end module model

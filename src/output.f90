@@ -1,0 +1,148 @@
+!> output -- column text files, the run log and the summary.
+!>
+!> Every file starts with '#' lines naming each column and its unit; data are
+!> written with (*(1x,es24.16e3)) so real64 round-trips, and flushed each
+!> increment so a run that stops early keeps what it computed.
+module output
+   use kinds, only: dp
+   use hermite, only: n_gauss, gauss_xi, hermite_shape
+   use mesh, only: element_dofs
+   use element, only: v_dofs, w_dofs
+   use section, only: ih_stretch, ih_statev
+   use model, only: model_type, state_type, gauss_position
+   implicit none
+   private
+   public :: output_files, open_outputs, write_row, write_strains, write_summary_line, &
+             close_outputs, make_directory, fmt_row
+
+   character(len=*), parameter :: fmt_row = '(*(1x,es24.16e3))'
+
+   !> Units of the files kept open through a run.
+   type :: output_files
+      character(len=:), allocatable :: dir
+      integer :: lock = -1, pull = -1, summary = -1
+   end type output_files
+
+contains
+
+   !> MAKE_DIRECTORY: create a directory and its parents (mkdir -p).
+   !>  path  [in]  directory
+   !>  stat  [out] 0 on success
+   subroutine make_directory(path, stat)
+      character(len=*), intent(in) :: path
+      integer, intent(out) :: stat
+      integer :: cstat
+      call execute_command_line('mkdir -p "'//trim(path)//'"', exitstat=stat, cmdstat=cstat)
+      if (cstat /= 0) stat = cstat
+   end subroutine make_directory
+
+   !> OPEN_OUTPUTS: create the output directory, open lock.dat and pull.dat and
+   !> write their headers.
+   !>  dir    [in]  output directory
+   !>  title  [in]  run title (echoed in the headers)
+   !>  out    [out] the open files
+   !>  errmsg [out] '' on success
+   subroutine open_outputs(dir, title, out, errmsg)
+      character(len=*), intent(in) :: dir, title
+      type(output_files), intent(out) :: out
+      character(len=*), intent(out) :: errmsg
+      integer :: stat
+      errmsg = ''
+      out%dir = trim(dir)
+      call make_directory(out%dir, stat)
+      if (stat /= 0) then
+         errmsg = 'cannot create output directory '//out%dir
+         return
+      end if
+      open (newunit=out%lock, file=out%dir//'/lock.dat', status='replace', action='write', iostat=stat)
+      if (stat == 0) open (newunit=out%pull, file=out%dir//'/pull.dat', status='replace', &
+                           action='write', iostat=stat)
+      if (stat /= 0) then
+         errmsg = 'cannot write in output directory '//out%dir
+         return
+      end if
+      write (out%lock, '(a)') '# drawbead locking: '//trim(title), &
+         '# 1:H/h 2:F/(E h) 3:F[N/mm] 4:newton_iterations 5:dH/h 6:min_localization_indicator[-]'// &
+         ' 7:max_penetration/h 8:N/(E h) 9:N[N/mm]', &
+         '# F = upward force of the lower tool on the sheet per unit width (punch force);'// &
+         ' N = horizontal reaction at the right edge'
+      write (out%pull, '(a)') '# drawbead pulling: '//trim(title), &
+         '# 1:delta/h 2:N/(E h) 3:N[N/mm] 4:newton_iterations 5:d(delta)/h 6:min_localization_indicator[-]'// &
+         ' 7:lift/(E h) 8:lift[N/mm] 9:max_penetration/h 10:F/(E h)', &
+         '# N = restraining force (horizontal reaction at the right edge) per unit width;'// &
+         ' lift = vertical force of the sheet opening the binder (on the upper tool)'
+      flush (out%lock)
+      flush (out%pull)
+   end subroutine open_outputs
+
+   !> WRITE_ROW: one data row, flushed.
+   subroutine write_row(unit, values)
+      integer, intent(in) :: unit
+      real(dp), intent(in) :: values(:)
+      write (unit, fmt_row) values
+      flush (unit)
+   end subroutine write_row
+
+   !> WRITE_SUMMARY_LINE: 'key = value' with a real value, or 'none' if absent.
+   subroutine write_summary_line(unit, key, value, present_flag)
+      integer, intent(in) :: unit
+      character(len=*), intent(in) :: key
+      real(dp), intent(in) :: value
+      logical, intent(in) :: present_flag
+      character(len=32) :: buf
+      if (present_flag) then
+         write (buf, '(es24.16e3)') value
+         write (unit, '(a)') key//' = '//trim(adjustl(buf))
+      else
+         write (unit, '(a)') key//' = none'
+      end if
+   end subroutine write_summary_line
+
+   !> WRITE_STRAINS: strain distribution over the sheet, one row per Gauss point.
+   !>  path  [in] file to write
+   !>  m, s  [in] model and converged state
+   !>  what  [in] text for the header ('after locking' ...)
+   subroutine write_strains(path, m, s, what)
+      character(len=*), intent(in) :: path, what
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      integer :: unit, e, ig, dofs(8), mid, stat
+      real(dp) :: le, nv(4), dn(4), d2n(4), v, w, h, eps, top, bot, e22, epmax
+      open (newunit=unit, file=path, status='replace', action='write', iostat=stat)
+      if (stat /= 0) return
+      h = m%thickness
+      mid = (m%npt + 1)/2
+      write (unit, '(a)') '# drawbead strain distribution '//trim(what), &
+         '# 1:s/h (reference position) 2:x/h 3:y/h (current centreline) 4:lambda-1'// &
+         ' 5:ln(lambda) 6:top_fibre_log_strain 7:bottom_fibre_log_strain'// &
+         ' 8:thickness_log_strain(mid-surface) 9:max_equivalent_plastic_strain(through thickness)'// &
+         ' 10:rho*h (bending strain) 11:N/(E h) 12:M/(E h^2)'
+      do e = 1, m%n_el
+         dofs = element_dofs(e)
+         le = m%x(e + 1) - m%x(e)
+         do ig = 1, n_gauss
+            call hermite_shape(gauss_xi(ig), le, nv, dn, d2n)
+            v = dot_product(nv, s%u(dofs(v_dofs)))
+            w = dot_product(nv, s%u(dofs(w_dofs)))
+            eps = s%gp(1, ig, e)
+            top = log(s%hn(ih_stretch, m%npt, ig, e))
+            bot = log(s%hn(ih_stretch, 1, ig, e))
+            e22 = s%hn(ih_statev + 1, mid, ig, e)
+            epmax = maxval(s%hn(ih_statev, :, ig, e))
+            write (unit, fmt_row) gauss_position(m, e, ig)/h, (gauss_position(m, e, ig) + v)/h, &
+               w/h, eps, log(1.0_dp + eps), top, bot, e22, epmax, s%gp(2, ig, e)*h, &
+               s%gp(3, ig, e)/(m%youngs*h), s%gp(4, ig, e)/(m%youngs*h*h)
+         end do
+      end do
+      close (unit)
+   end subroutine write_strains
+
+   !> CLOSE_OUTPUTS: close the files kept open.
+   subroutine close_outputs(out)
+      type(output_files), intent(inout) :: out
+      if (out%lock > 0) close (out%lock)
+      if (out%pull > 0) close (out%pull)
+      out%lock = -1
+      out%pull = -1
+   end subroutine close_outputs
+end module output

@@ -1,0 +1,146 @@
+!> section -- through-thickness integration of the sheet: N, M and C (2.16), (2.17).
+!>
+!> A Gauss station of the shell carries npt material points (Simpson stations,
+!> paper §4) at reference distance z_k, current distance zbar_k (lagged, DESIGN
+!> §3).  Fibre stretch Lambda_k = 1 + eps + zbar_k rho; the material gets the
+!> log-strain increment ln(Lambda_k/Lambda_k,old) with the width strain held.
+!>
+!> The history of one material point is one column of hist(n_hist, npt):
+!>   hist(ih_stretch)      converged fibre stretch Lambda_k
+!>   hist(ih_zbar)         current distance from the mid-surface (lagged)
+!>   hist(ih_stress:+1)    Kirchhoff stress (tau_11, tau_33)
+!>   hist(ih_sse), (ih_spd) elastic energy and plastic dissipation densities
+!>   hist(ih_statev:)      the material's state variables (material_j2)
+module section
+   use kinds, only: dp
+   use material_j2, only: umat, n_statev
+   implicit none
+   private
+   public :: n_hist, ih_stretch, ih_zbar, ih_stress, ih_sse, ih_spd, ih_statev, &
+             section_init, section_response, section_localization, section_update_zbar
+
+   integer, parameter :: ih_stretch = 1, ih_zbar = 2, ih_stress = 3, ih_sse = 5, &
+                         ih_spd = 6, ih_statev = 7
+   integer, parameter :: n_hist = ih_statev - 1 + n_statev
+
+contains
+
+   !> SECTION_INIT: history of an undeformed, stress-free section.
+   !>  z     [in]  reference station positions
+   !>  hist  [out] history columns, one per station
+   pure subroutine section_init(z, hist)
+      real(dp), intent(in) :: z(:)
+      real(dp), intent(out) :: hist(:, :)
+      hist = 0.0_dp
+      hist(ih_stretch, :) = 1.0_dp
+      hist(ih_zbar, :) = z
+   end subroutine section_init
+
+   !> SECTION_RESPONSE: section forces and tangent for given (eps, rho), (2.16)-(2.17).
+   !>  eps, rho [in]  axial and bending strains at this Gauss station
+   !>  wz       [in]  Simpson weights (reference thickness), sum = h
+   !>  props    [in]  material constants passed to the UMAT
+   !>  hn       [in]  converged history of the stations
+   !>  h1       [out] trial history at (eps, rho)
+   !>  force    [out] N = sum w tau/Lambda
+   !>  moment   [out] M = sum w tau zbar/Lambda
+   !>  c        [out] C(2,2): dN/deps, dN/drho = dM/deps, dM/drho (consistent)
+   !>  pnewdt   [in,out] set < 1 when a fibre inverts or the material asks
+   pure subroutine section_response(eps, rho, wz, props, hn, h1, force, moment, c, pnewdt)
+      real(dp), intent(in) :: eps, rho, wz(:), props(:), hn(:, :)
+      real(dp), intent(out) :: h1(:, :), force, moment, c(2, 2)
+      real(dp), intent(inout) :: pnewdt
+      integer :: k
+      real(dp) :: lam, zb, tau, stiff, dstran(2), stran(2), ddsdde(2, 2), wl, wl2
+      force = 0.0_dp
+      moment = 0.0_dp
+      c = 0.0_dp
+      h1 = hn
+      do k = 1, size(wz)
+         zb = hn(ih_zbar, k)
+         lam = 1.0_dp + eps + zb*rho
+         if (lam <= 0.05_dp) then
+            ! a fibre shortened to nothing: the increment is far too large
+            pnewdt = min(pnewdt, 0.25_dp)
+            return
+         end if
+         stran = [log(hn(ih_stretch, k)), 0.0_dp]
+         dstran = [log(lam/hn(ih_stretch, k)), 0.0_dp]
+         call umat(h1(ih_stress:ih_stress + 1, k), h1(ih_statev:, k), ddsdde, &
+                   h1(ih_sse, k), h1(ih_spd, k), stran, dstran, props, size(props), &
+                   n_statev, pnewdt)
+         if (pnewdt < 1.0_dp) return
+         h1(ih_stretch, k) = lam
+         tau = h1(ih_stress, k)
+         stiff = ddsdde(1, 1)
+         wl = wz(k)/lam
+         wl2 = wl/lam*(stiff - tau)
+         force = force + wl*tau
+         moment = moment + wl*tau*zb
+         c(1, 1) = c(1, 1) + wl2
+         c(1, 2) = c(1, 2) + wl2*zb
+         c(2, 2) = c(2, 2) + wl2*zb*zb
+      end do
+      c(2, 1) = c(1, 2)
+   end subroutine section_response
+
+   !> SECTION_LOCALIZATION: localization indicator of a converged section (3.1),
+   !> DESIGN §7: the smallest eigenvalue of the section tangent built with the
+   !> continuum moduli (plastic where loading, elastic where not), scaled by
+   !> its elastic values with the current thickness t,
+   !>   c = [C11/(E h), sqrt(12) C12/(E h t); sqrt(12) C12/(E h t), 12 C22/(E h t^2)].
+   !> It is <= 0 exactly when C11 <= 0 or det C <= 0.  With this scaling the
+   !> two diagonal entries are equal in uniform tension (C12 = 0), so the
+   !> smallest eigenvalue has no kink where it crosses zero and the crossing
+   !> can be interpolated linearly inside an increment (unscaled, its slope
+   !> would jump twelvefold there).
+   !>  wz     [in] Simpson weights
+   !>  hist   [in] converged history of the stations
+   !>  h, e   [in] thickness and Young's modulus (scales)
+   pure function section_localization(wz, hist, h, e) result(indicator)
+      real(dp), intent(in) :: wz(:), hist(:, :), h, e
+      real(dp) :: indicator
+      real(dp) :: c11, c12, c22, lam, zb, wl2, t, tr, dt
+      integer :: k, npt
+      npt = size(wz)
+      t = hist(ih_zbar, npt) - hist(ih_zbar, 1)
+      c11 = 0.0_dp; c12 = 0.0_dp; c22 = 0.0_dp
+      do k = 1, npt
+         lam = hist(ih_stretch, k)
+         zb = sqrt(12.0_dp)*hist(ih_zbar, k)/t
+         wl2 = wz(k)*(hist(ih_statev + 3, k) - hist(ih_stress, k))/(lam*lam)
+         c11 = c11 + wl2
+         c12 = c12 + wl2*zb
+         c22 = c22 + wl2*zb*zb
+      end do
+      c11 = c11/(e*h); c12 = c12/(e*h); c22 = c22/(e*h)
+      tr = 0.5_dp*(c11 + c22)
+      dt = sqrt(0.25_dp*(c11 - c22)**2 + c12*c12)
+      indicator = tr - dt
+   end function section_localization
+
+   !> SECTION_UPDATE_ZBAR: current station distances from the converged thickness
+   !> strains: d zbar/dz = exp(eps_22), trapezoid rule from the mid-surface
+   !> station outward (DESIGN §3).  Called once per converged increment, so zbar
+   !> is lagged one increment.
+   !>  z     [in]  reference station positions (odd count, mid station at 0)
+   !>  hist  [in,out] history; row ih_zbar is rewritten
+   pure subroutine section_update_zbar(z, hist)
+      real(dp), intent(in) :: z(:)
+      real(dp), intent(inout) :: hist(:, :)
+      integer :: k, mid
+      real(dp) :: g0, g1
+      mid = (size(z) + 1)/2
+      hist(ih_zbar, mid) = 0.0_dp
+      do k = mid + 1, size(z)
+         g0 = exp(hist(ih_statev + 1, k - 1))
+         g1 = exp(hist(ih_statev + 1, k))
+         hist(ih_zbar, k) = hist(ih_zbar, k - 1) + 0.5_dp*(g0 + g1)*(z(k) - z(k - 1))
+      end do
+      do k = mid - 1, 1, -1
+         g0 = exp(hist(ih_statev + 1, k + 1))
+         g1 = exp(hist(ih_statev + 1, k))
+         hist(ih_zbar, k) = hist(ih_zbar, k + 1) + 0.5_dp*(g0 + g1)*(z(k) - z(k + 1))
+      end do
+   end subroutine section_update_zbar
+end module section

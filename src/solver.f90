@@ -1,0 +1,228 @@
+!> solver -- global assembly, Newton-Raphson per increment, commit (DESIGN §8).
+!>
+!> The residual is r = f_int(u) - f_ext: internal forces of the elements plus
+!> contact and friction forces of the tools, minus dead loads and the end moment.
+!> Prescribed dofs are imposed on the trial state before the first iteration,
+!> their equations replaced by du_i = 0.
+module solver
+   use kinds, only: dp
+   use hermite, only: n_gauss, gauss_xi, gauss_wt, hermite_shape
+   use mesh, only: element_dofs, half_band, dofs_per_node
+   use band, only: band_matrix, band_init, band_zero, band_add, band_fix_dof, band_solve
+   use element, only: element_internal, v_dofs, w_dofs
+   use section, only: section_localization, section_update_zbar
+   use model, only: model_type, state_type, load_type
+   use contact, only: contact_station, contact_commit
+   implicit none
+   private
+   public :: newton_result, assemble, newton_solve, commit_state, max_newton_history, &
+             newton_ok, newton_diverged, newton_cutback, newton_singular
+
+   integer, parameter :: max_newton_history = 100
+   integer, parameter :: newton_ok = 0, newton_diverged = 1, newton_cutback = 2, &
+                         newton_singular = 3
+
+   !> What one Newton solve did.
+   type :: newton_result
+      integer :: status = newton_ok
+      integer :: iterations = 0
+      real(dp) :: residual(0:max_newton_history) = 0.0_dp ! scaled residual per iteration
+      real(dp) :: correction = 0.0_dp                      ! last scaled correction
+      integer :: singular_pivot = 0
+   end type newton_result
+
+contains
+
+   !> ASSEMBLE: residual and tangent of the whole sheet at the trial state s%u1.
+   !>  m      [in]  model
+   !>  s      [in,out] state: h1, c1 and gp are rewritten from hn, cn and u1
+   !>  ld     [in]  applied loads and tool position
+   !>  kb     [in,out] band tangent (allocated by the caller), overwritten
+   !>  r      [out] residual f_int - f_ext at every dof (reactions at fixed dofs)
+   !>  f_scale [out] norm of the internal forces (force scale for convergence)
+   !>  pnewdt [out] < 1 if a material point or contact station asks for a cut
+   subroutine assemble(m, s, ld, kb, r, f_scale, pnewdt)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(inout) :: s
+      type(load_type), intent(in) :: ld
+      type(band_matrix), intent(inout) :: kb
+      real(dp), intent(out) :: r(:), f_scale
+      real(dp), intent(out) :: pnewdt
+      real(dp) :: re(8), ke(8, 8), le, ul(8), nv(4), dn(4), d2n(4), nm(2, 8), p(2)
+      real(dp) :: fc(2), kc(2, 2), dv, shifts(2)
+      integer :: e, ig, it, dofs(8), stat
+      call band_zero(kb)
+      r = 0.0_dp
+      pnewdt = 1.0_dp
+      f_scale = 0.0_dp
+      shifts = [0.0_dp, ld%tool_shift]
+      s%tool_force = 0.0_dp
+      do e = 1, m%n_el
+         dofs = element_dofs(e)
+         le = m%x(e + 1) - m%x(e)
+         ul = s%u1(dofs)
+         call element_internal(le, ul, m%wz, m%props, s%hn(:, :, :, e), s%h1(:, :, :, e), &
+                               re, ke, s%gp(:, :, e), pnewdt)
+         if (pnewdt < 1.0_dp) return
+         ! moments (slope dofs) enter the force scale divided by the thickness
+         f_scale = f_scale + sum(re(1:8:2)**2) + sum((re(2:8:2)/m%thickness)**2)
+         if (m%has_tools) then
+            do ig = 1, n_gauss
+               call hermite_shape(gauss_xi(ig), le, nv, dn, d2n)
+               nm = 0.0_dp
+               nm(1, v_dofs) = nv
+               nm(2, w_dofs) = nv
+               p = matmul(nm, ul)
+               p(1) = p(1) + m%x(e) + gauss_xi(ig)*le
+               dv = gauss_wt(ig)*le
+               do it = 1, 2
+                  call contact_station(m%tool(it), shifts(it), m%penalty, m%friction, &
+                                       m%friction_eps, p, s%cn(:, ig, e, it), &
+                                       s%c1(:, ig, e, it), fc, kc)
+                  ! the tool pushes the sheet with fc: it enters r = f_int - f_ext with -
+                  re = re - dv*matmul(fc, nm)
+                  s%tool_force(:, it) = s%tool_force(:, it) + dv*fc
+                  ke = ke - dv*matmul(transpose(nm), matmul(kc, nm))
+               end do
+            end do
+         end if
+         call band_add(kb, dofs, ke, stat)
+         r(dofs) = r(dofs) + re
+      end do
+      r = r - ld%f_ext
+      if (ld%moment_node > 0) call add_end_moment(ld%moment_node, ld%moment, s%u1, r, kb)
+      f_scale = sqrt(f_scale + sum(ld%f_ext**2) + (ld%moment/m%thickness)**2)
+   end subroutine assemble
+
+   !> ADD_END_MOMENT: a conservative end moment M at node n, external work
+   !> M theta with theta = atan2(w', 1 + v') the rotation of the tangent.
+   !> Adds -M dtheta/dq to r and -M d2theta/dq2 to the tangent.
+   subroutine add_end_moment(n, moment, u, r, kb)
+      integer, intent(in) :: n
+      real(dp), intent(in) :: moment, u(:)
+      real(dp), intent(inout) :: r(:)
+      type(band_matrix), intent(inout) :: kb
+      real(dp) :: a, b, q, dth(2), d2th(2, 2)
+      integer :: dofs(2), stat
+      dofs = [dofs_per_node*(n - 1) + 2, dofs_per_node*(n - 1) + 4]
+      a = 1.0_dp + u(dofs(1))
+      b = u(dofs(2))
+      q = a*a + b*b
+      dth = [-b/q, a/q]
+      d2th(1, 1) = 2.0_dp*a*b/q**2
+      d2th(2, 2) = -2.0_dp*a*b/q**2
+      d2th(1, 2) = (b*b - a*a)/q**2
+      d2th(2, 1) = d2th(1, 2)
+      r(dofs) = r(dofs) - moment*dth
+      call band_add(kb, dofs, -moment*d2th, stat)
+   end subroutine add_end_moment
+
+   !> NEWTON_SOLVE: equilibrium at the loads ld, starting from the trial s%u1
+   !> (the caller may put a predictor there); prescribed dofs are set first.
+   !> Converged when the scaled residual and the scaled correction are both
+   !> below tol: residual ||r_free|| / force scale, correction max |du|/h over
+   !> displacement dofs and max |du| over slope dofs.
+   !>  m, s, ld  [in], [in,out], [in]
+   !>  kb        [in,out] work band matrix (allocated once by the caller)
+   !>  r         [out] residual at the solution (reactions at fixed dofs)
+   !>  max_iter  [in]  iteration limit
+   !>  tol       [in]  tolerance
+   !>  res       [out] what happened
+   subroutine newton_solve(m, s, ld, kb, r, max_iter, tol, res)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(inout) :: s
+      type(load_type), intent(in) :: ld
+      type(band_matrix), intent(inout) :: kb
+      real(dp), intent(out) :: r(:)
+      integer, intent(in) :: max_iter
+      real(dp), intent(in) :: tol
+      type(newton_result), intent(out) :: res
+      real(dp) :: du(size(r)), f_scale, pnewdt, rnorm, cnorm
+      integer :: it, i, info
+      where (ld%fixed) s%u1 = ld%u_fixed
+      cnorm = huge(1.0_dp)
+      do it = 0, min(max_iter, max_newton_history)
+         call assemble(m, s, ld, kb, r, f_scale, pnewdt)
+         res%iterations = it
+         if (pnewdt < 1.0_dp) then
+            res%status = newton_cutback
+            return
+         end if
+         du = merge(0.0_dp, r, ld%fixed)
+         do i = 2, size(du), 2
+            du(i) = du(i)/m%thickness
+         end do
+         rnorm = norm2(du)/max(f_scale, 1.0e-12_dp*m%youngs*m%thickness)
+         res%residual(it) = rnorm
+         if (rnorm /= rnorm .or. rnorm > huge(1.0_dp)) then
+            res%status = newton_diverged
+            return
+         end if
+         if (it > 0 .and. rnorm <= tol .and. cnorm <= tol) then
+            res%status = newton_ok
+            return
+         end if
+         if (it == max_iter) then
+            res%status = newton_diverged
+            return
+         end if
+         if (it >= 5) then
+            ! growing twice in a row after the first iterations: diverging
+            if (rnorm > res%residual(max(it - 1, 0)) .and. &
+                res%residual(max(it - 1, 0)) > res%residual(max(it - 2, 0))) then
+               res%status = newton_diverged
+               return
+            end if
+         end if
+         du = -merge(0.0_dp, r, ld%fixed)
+         do i = 1, size(du)
+            if (ld%fixed(i)) call band_fix_dof(kb, i)
+         end do
+         call band_solve(kb, du, info)
+         if (info /= 0) then
+            res%status = newton_singular
+            res%singular_pivot = info
+            return
+         end if
+         s%u1 = s%u1 + du
+         cnorm = 0.0_dp
+         do i = 1, size(du)
+            if (mod(i, 2) == 1) then
+               cnorm = max(cnorm, abs(du(i))/m%thickness)
+            else
+               cnorm = max(cnorm, abs(du(i)))
+            end if
+         end do
+         res%correction = cnorm
+      end do
+      res%status = newton_diverged
+   end subroutine newton_solve
+
+   !> COMMIT_STATE: accept the trial state as converged; update the lagged
+   !> station distances and the localization indicator of every Gauss station.
+   !>  m  [in]  model
+   !>  s  [in,out] state: u <- u1, hn <- h1, cn <- c1 (committed friction history)
+   !>  shift [in] the lower tool's rise at this state
+   subroutine commit_state(m, s, shift)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(inout) :: s
+      real(dp), intent(in) :: shift
+      integer :: e, ig, it
+      do e = 1, m%n_el
+         do ig = 1, n_gauss
+            s%indicator(ig, e) = section_localization(m%wz, s%h1(:, :, ig, e), &
+                                                      m%thickness, m%youngs)
+            call section_update_zbar(m%z, s%h1(:, :, ig, e))
+            if (m%has_tools) then
+               do it = 1, 2
+                  call contact_commit(s%c1(:, ig, e, it))
+               end do
+            end if
+         end do
+      end do
+      s%u = s%u1
+      s%hn = s%h1
+      s%cn = s%c1
+      s%shift = shift
+   end subroutine commit_state
+end module solver

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# bad_decks.sh -- every tests/decks/bad_*.nml must be rejected.
+#
+# Usage: tests/bad_decks.sh [binary]     (default binary: bin/drawbead)
+#
+# The binary path is taken relative to the repository root, which is the
+# parent of this script's directory; the script runs from there. For each
+# deck the program must exit with status 1 (input error) and its stderr must
+# contain the text after "! expect:" on the deck's first line (the variable,
+# or '&group', that the error has to name). One line is printed per deck;
+# the exit status is the number of failures (capped at 1).
+set -u
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
+
+bin=${1:-bin/drawbead}
+if [[ ! -x $bin ]]; then
+    echo "bad_decks: no executable '$bin' (build it first)" >&2
+    exit 2
+fi
+
+stderr_file=$(mktemp)
+trap 'rm -f "$stderr_file"' EXIT
+
+shopt -s nullglob
+decks=(tests/decks/bad_*.nml)
+if ((${#decks[@]} == 0)); then
+    echo "bad_decks: no tests/decks/bad_*.nml found" >&2
+    exit 2
+fi
+
+failures=0
+for deck in "${decks[@]}"; do
+    first_line=$(head -n 1 "$deck")
+    expect=${first_line#*expect:}
+    expect=${expect#"${expect%%[![:space:]]*}"}
+    expect=${expect%"${expect##*[![:space:]]}"}
+    if [[ $first_line != *expect:* || -z $expect ]]; then
+        echo "FAIL $deck: first line must be '! expect: <variable>'"
+        failures=$((failures + 1))
+        continue
+    fi
+
+    "$bin" "$deck" >/dev/null 2>"$stderr_file"
+    status=$?
+
+    if ((status != 1)); then
+        echo "FAIL $deck: exit status $status, expected 1"
+        failures=$((failures + 1))
+    elif ! grep -qF -- "$expect" "$stderr_file"; then
+        echo "FAIL $deck: stderr does not name '$expect':"
+        sed 's/^/    /' "$stderr_file"
+        failures=$((failures + 1))
+    else
+        echo "ok   $deck ($expect)"
+    fi
+done
+
+echo "bad_decks: ${#decks[@]} decks, $failures failed"
+((failures == 0))
