@@ -49,6 +49,7 @@ program drawbead
    call read_deck(trim(path), d, errs)
    if (errs%count > 0) then
       call report_errors(errs, error_unit)
+      flush (error_unit)
       stop 1
    end if
    if (len_trim(out_override) > 0) d%output_dir = out_override

@@ -116,7 +116,8 @@ contains
          '# 1:s/h (reference position) 2:x/h 3:y/h (current centreline) 4:lambda-1'// &
          ' 5:ln(lambda) 6:top_fibre_log_strain 7:bottom_fibre_log_strain'// &
          ' 8:thickness_log_strain(mid-surface) 9:max_equivalent_plastic_strain(through thickness)'// &
-         ' 10:rho*h (bending strain) 11:N/(E h) 12:M/(E h^2)'
+         ' 10:rho*h (bending strain) 11:N/(E h) 12:M/(E h^2)'// &
+         ' 13:localization_indicator (smallest eigenvalue of the scaled section tangent, <= 0: localized)'
       do e = 1, m%n_el
          dofs = element_dofs(e)
          le = m%x(e + 1) - m%x(e)
@@ -131,7 +132,7 @@ contains
             epmax = maxval(s%hn(ih_statev, :, ig, e))
             write (unit, fmt_row) gauss_position(m, e, ig)/h, (gauss_position(m, e, ig) + v)/h, &
                w/h, eps, log(1.0_dp + eps), top, bot, e22, epmax, s%gp(2, ig, e)*h, &
-               s%gp(3, ig, e)/(m%youngs*h), s%gp(4, ig, e)/(m%youngs*h*h)
+               s%gp(3, ig, e)/(m%youngs*h), s%gp(4, ig, e)/(m%youngs*h*h), s%indicator(ig, e)
          end do
       end do
       close (unit)

@@ -6,9 +6,12 @@
 # The binary path is taken relative to the repository root, which is the
 # parent of this script's directory; the script runs from there. For each
 # deck the program must exit with status 1 (input error) and its stderr must
-# contain the text after "! expect:" on the deck's first line (the variable,
-# or '&group', that the error has to name). One line is printed per deck;
-# the exit status is the number of failures (capped at 1).
+# name what the deck's first line, "! expect: <name>", gives: a variable
+# (stderr must contain "variable <name>") or a group written '&group'
+# (stderr must contain "group &group"). Matching "variable <name>" rather
+# than the bare name keeps a deck's file name (bad_left_edge.nml) from
+# passing for the message. One line is printed per deck; the exit status is
+# 0 when all decks pass, 1 when any fails, 2 when the script cannot run.
 set -u
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -41,14 +44,20 @@ for deck in "${decks[@]}"; do
         continue
     fi
 
+    if [[ $expect == '&'* ]]; then
+        pattern="group $expect"
+    else
+        pattern="variable $expect"
+    fi
+
     "$bin" "$deck" >/dev/null 2>"$stderr_file"
     status=$?
 
     if ((status != 1)); then
         echo "FAIL $deck: exit status $status, expected 1"
         failures=$((failures + 1))
-    elif ! grep -qF -- "$expect" "$stderr_file"; then
-        echo "FAIL $deck: stderr does not name '$expect':"
+    elif ! grep -qF -- "$pattern" "$stderr_file"; then
+        echo "FAIL $deck: stderr does not contain '$pattern':"
         sed 's/^/    /' "$stderr_file"
         failures=$((failures + 1))
     else
