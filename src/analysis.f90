@@ -110,7 +110,7 @@ contains
       do while (p < p1 - 1.0e-12_dp*h)
          dt = min(dt, p1 - p)
          call phase_load(m, d, phase, p + dt, ld)
-         if (have_prev) then
+         if (have_prev .and. d%predictor) then
             s%u1 = s%u + (dt/dt_prev)*(s%u - u_prev)
          else
             s%u1 = s%u
@@ -121,14 +121,14 @@ contains
             rec%cutbacks = rec%cutbacks + 1
             select case (nr%status)
             case (newton_cutback)
-               tag = 'material cut'
+               write (tag, '(a,f5.2)') 'pnewdt ', nr%pnewdt
             case (newton_singular)
                tag = 'singular'
             case default
                tag = 'diverged'
             end select
             write (output_unit, '(a5,1x,a,es10.3,a,i3,a,es9.2,2a)') phase, 'cutback  d/h=', dt/h, &
-               '  it', nr%iterations, '  res', nr%residual(nr%iterations), '  ', trim(tag)
+               '  it', nr%iterations, '  res', nr%residual(max(nr%iterations - 1, 0)), '  ', trim(tag)
             dt = 0.25_dp*dt
             have_prev = .false.
             s%u1 = s%u
@@ -195,7 +195,10 @@ contains
             '  res', nr%residual(nr%iterations), '  loc', min_ind, '  force/Eh=', &
             merge(punch, reaction, phase == 'lock')/eh, merge(' LOCALIZED', '          ', &
                                                               rec%localized .and. rec%loc_phase == phase .and. e_cr > 0)
+         if (d%log_residuals) write (output_unit, '(a,*(es9.2))') '      residuals:', &
+            nr%residual(0:nr%iterations)
          if (rec%localized .and. d%stop_at_localization) return
+         ! grow after easy convergence, shrink after a hard one
          if (nr%iterations <= 4) then
             dt = min(1.5_dp*dt, d%max_increment)
          else if (nr%iterations >= 8) then

@@ -3,7 +3,7 @@
 !> A deck is a text file of Fortran namelist groups, in any order, each
 !> optional:
 !>
-!>   &control   title, output_dir, stop_at_localization
+!>   &control   title, output_dir, stop_at_localization, log_residuals
 !>   &sheet     thickness, length, n_elements, mesh_beta, left_edge,
 !>              back_tension
 !>   &material  youngs_modulus, poissons_ratio, r_value, hardening,
@@ -66,6 +66,8 @@ module deck
       character(len=256) :: title = ''
       character(len=512) :: output_dir = ''          ! '' -> 'out/<deck base name>'
       logical :: stop_at_localization = .true.
+      logical :: log_residuals = .false.          ! print each increment's Newton residual sequence
+      logical :: predictor = .true.               ! extrapolate the last increment's motion as first guess
       ! &sheet
       real(dp) :: thickness = default_thickness       ! h, mm
       real(dp) :: length = unset                      ! 2L, mm; default 50 h
@@ -314,13 +316,15 @@ contains
 
       character(len=256) :: title
       character(len=512) :: output_dir
-      logical :: stop_at_localization
-      namelist /control/ title, output_dir, stop_at_localization
+      logical :: stop_at_localization, log_residuals, predictor
+      namelist /control/ title, output_dir, stop_at_localization, log_residuals, predictor
       character(len=echo_len) :: lines(echo_rows)
 
       title = d%title
       output_dir = d%output_dir
       stop_at_localization = d%stop_at_localization
+      log_residuals = d%log_residuals
+      predictor = d%predictor
       select case (action)
       case (act_read_unit)
          read (unit, nml=control, iostat=ios, iomsg=msg)
@@ -335,6 +339,8 @@ contains
       d%title = title
       d%output_dir = output_dir
       d%stop_at_localization = stop_at_localization
+      d%log_residuals = log_residuals
+      d%predictor = predictor
    end subroutine nml_control
 
    !> nml_sheet -- namelist &sheet (arguments as group_io).

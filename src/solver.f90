@@ -29,6 +29,7 @@ module solver
       real(dp) :: residual(0:max_newton_history) = 0.0_dp ! scaled residual per iteration
       real(dp) :: correction = 0.0_dp                      ! last scaled correction
       integer :: singular_pivot = 0
+      real(dp) :: pnewdt = 1.0_dp                          ! cut factor asked for (1: none)
    end type newton_result
 
 contains
@@ -119,9 +120,9 @@ contains
 
    !> NEWTON_SOLVE: equilibrium at the loads ld, starting from the trial s%u1
    !> (the caller may put a predictor there); prescribed dofs are set first.
-   !> Converged when the scaled residual and the scaled correction are both
-   !> below tol: residual ||r_free|| / force scale, correction max |du|/h over
-   !> displacement dofs and max |du| over slope dofs.
+   !> Converged when the scaled residual is below tol and the last scaled
+   !> correction below sqrt(tol): residual ||r_free|| / force scale,
+   !> correction max |du|/h over displacement dofs and max |du| over slopes.
    !>  m, s, ld  [in], [in,out], [in]
    !>  kb        [in,out] work band matrix (allocated once by the caller)
    !>  r         [out] residual at the solution (reactions at fixed dofs)
@@ -138,13 +139,24 @@ contains
       real(dp), intent(in) :: tol
       type(newton_result), intent(out) :: res
       real(dp) :: du(size(r)), f_scale, pnewdt, rnorm, cnorm
-      integer :: it, i, info
+      integer :: it, i, info, backtrack
       where (ld%fixed) s%u1 = ld%u_fixed
       cnorm = huge(1.0_dp)
       do it = 0, min(max_iter, max_newton_history)
          call assemble(m, s, ld, kb, r, f_scale, pnewdt)
          res%iterations = it
+         ! a Newton iterate that a material point cannot take (a fibre
+         ! inverted, a failed return map) is backtracked along the last
+         ! correction before the increment itself is cut
+         backtrack = 0
+         do while (pnewdt < 1.0_dp .and. it > 0 .and. backtrack < 4)
+            backtrack = backtrack + 1
+            du = 0.5_dp*du
+            s%u1 = s%u1 - du
+            call assemble(m, s, ld, kb, r, f_scale, pnewdt)
+         end do
          if (pnewdt < 1.0_dp) then
+            res%pnewdt = pnewdt
             res%status = newton_cutback
             return
          end if
@@ -158,7 +170,9 @@ contains
             res%status = newton_diverged
             return
          end if
-         if (it > 0 .and. rnorm <= tol .and. cnorm <= tol) then
+         ! the residual at tol and the last correction at sqrt(tol): with
+         ! quadratic convergence the error left is then O(tol) as well
+         if (it > 0 .and. rnorm <= tol .and. cnorm <= sqrt(tol)) then
             res%status = newton_ok
             return
          end if
