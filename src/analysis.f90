@@ -8,7 +8,8 @@
 module analysis
    use kinds, only: dp, output_unit
    use deck, only: deck_type
-   use hermite, only: n_gauss
+   use hermite, only: n_gauss, gauss_wt
+   use section, only: ih_sse, ih_spd
    use band, only: band_matrix, band_init
    use mesh, only: half_band
    use model, only: model_type, state_type, load_type, load_init, gauss_position
@@ -17,7 +18,7 @@ module analysis
    use output, only: output_files, write_row
    implicit none
    private
-   public :: run_record, run_phase, phase_load, run_record_init
+   public :: run_record, run_phase, phase_load, run_record_init, energy_totals
 
    !> What the run has found so far (written to summary.txt).
    type :: run_record
@@ -33,6 +34,12 @@ module analysis
       integer :: n_pull = 0
       real(dp) :: min_indicator = 1.0_dp
       real(dp) :: max_penetration = 0.0_dp
+      ! energy bookkeeping (N mm per mm of width): external work so far, the
+      ! force conjugate to the load parameter at the last increment, and the
+      ! work and stored/dissipated energies when pulling started
+      real(dp) :: work = 0.0_dp, work_pull_start = 0.0_dp
+      real(dp) :: last_conjugate = 0.0_dp, last_reaction = 0.0_dp
+      real(dp) :: energy_pull_start(4) = 0.0_dp
    end type run_record
 
 contains
@@ -105,6 +112,13 @@ contains
       call band_init(kb, m%n_dof, half_band, half_band)
       p = p0
       dt = d%initial_increment
+      ! the force doing work on the load parameter: F while locking (starts
+      ! at 0 on the flat sheet), N while pulling (the reaction reached so far)
+      rec%last_conjugate = merge(0.0_dp, rec%last_reaction, phase == 'lock')
+      if (phase == 'pull') then
+         rec%work_pull_start = rec%work
+         call energy_totals(m, s, rec%energy_pull_start)
+      end if
       dt_prev = dt
       have_prev = .false.
       do while (p < p1 - 1.0e-12_dp*h)
@@ -178,6 +192,11 @@ contains
                rec%s_star = gauss_position(m, e_cr, ig_cr)
             end if
          end if
+         ! external work, trapezoid in the load parameter, plus the dead loads
+         rec%work = rec%work + 0.5_dp*dt*(rec%last_conjugate + merge(punch, reaction, phase == 'lock')) &
+                    + dot_product(ld%f_ext, s%u - u_prev)
+         rec%last_conjugate = merge(punch, reaction, phase == 'lock')
+         rec%last_reaction = reaction
          if (phase == 'lock') then
             rec%lock_force = punch
             call write_row(out%lock, [p/h, punch/eh, punch, real(nr%iterations, dp), dt/h, &
@@ -207,6 +226,34 @@ contains
          have_prev = .true.
       end do
    end subroutine run_phase
+
+   !> ENERGY_TOTALS: stored and dissipated energies of the converged state per
+   !> unit width (N mm/mm): elastic, plastic (the material's sse and spd
+   !> integrated over the sheet), penalty (k d^2/2 over the contact stations)
+   !> and friction dissipation.
+   !>  m, s    [in]  model and converged state
+   !>  energy  [out] (elastic, plastic, penalty, friction)
+   pure subroutine energy_totals(m, s, energy)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      real(dp), intent(out) :: energy(4)
+      real(dp) :: dv
+      integer :: e, ig, it
+      energy = 0.0_dp
+      do e = 1, m%n_el
+         do ig = 1, n_gauss
+            dv = gauss_wt(ig)*(m%x(e + 1) - m%x(e))
+            energy(1) = energy(1) + dv*dot_product(m%wz, s%hn(ih_sse, :, ig, e))
+            energy(2) = energy(2) + dv*dot_product(m%wz, s%hn(ih_spd, :, ig, e))
+            if (m%has_tools) then
+               do it = 1, 2
+                  energy(3) = energy(3) + dv*0.5_dp*m%penalty*s%cn(8, ig, e, it)**2
+                  energy(4) = energy(4) + dv*s%cn(7, ig, e, it)
+               end do
+            end if
+         end do
+      end do
+   end subroutine energy_totals
 
    !> RECORD_PULL: append (delta, N) to the pull history, growing it as needed.
    subroutine record_pull(rec, delta, force)

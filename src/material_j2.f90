@@ -80,7 +80,7 @@ contains
    !> sse     [in,out] elastic strain energy density at the end of the
    !>                  increment, (s11^2 + s33^2 - 2 nu s11 s33)/(2E).
    !> spd     [in,out] plastic dissipation density, accumulated:
-   !>                  spd = spd + dp * sbar_end.
+   !>                  spd = spd + int sigma_y d ep over the increment (Simpson).
    !> stran   [in]     total log strain (eps11, eps33) at the start of the
    !>                  increment.  Not needed: the stress is the state of
    !>                  this additive model.  Kept for the UMAT interface.
@@ -118,7 +118,7 @@ contains
 
       real(dp) :: e_mod, nu, r_value, e_ps
       real(dp) :: d(2, 2), sig_tr(2), sig(2), dsig(2), flow(2), dflow(2)
-      real(dp) :: ep_n, sy_n, h_n, seq_tr, seq, dp_inc, h_end, denom
+      real(dp) :: ep_n, sy_n, h_n, seq_tr, seq, dp_inc, h_end, denom, sy_mid, h_mid
       logical :: ok
 
       ! stran is not needed (see header); the associate marks it as read.
@@ -188,9 +188,11 @@ contains
       stress = sig
       statev(3) = stress(2)
       sse = elastic_energy(stress, e_mod, nu)
-      ! Backward Euler: sigma_end : d eps_p = dp n . sigma = dp sbar_end
-      ! (sbar is homogeneous of degree one).
-      spd = spd + dp_inc*seq
+      ! Dissipation: on the yield surface sigma : d eps_p = sbar d ep = sigma_y(ep) d ep,
+      ! integrated over the increment with Simpson's rule (the backward-Euler
+      ! value dp*sbar_end overestimates it at first order in the increment).
+      call flow_stress(ep_n + 0.5_dp*dp_inc, props, nprops, sy_mid, h_mid)
+      spd = spd + dp_inc*(sy_n + 4.0_dp*sy_mid + seq)/6.0_dp
    end subroutine umat
 
    !> Backward-Euler return mapping onto the Hill yield surface.

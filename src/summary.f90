@@ -4,7 +4,7 @@ module summary
    use deck, only: deck_type
    use section, only: ih_zbar
    use model, only: model_type, state_type
-   use analysis, only: run_record
+   use analysis, only: run_record, energy_totals
    use output, only: write_summary_line
    implicit none
    private
@@ -50,7 +50,7 @@ contains
       type(run_record), intent(in) :: rec
       real(dp), intent(in) :: cpu
       integer :: u, stat
-      real(dp) :: h, eh, fsteady, thinning
+      real(dp) :: h, eh, fsteady, thinning, energy(4), pull_work
       logical :: steady
       character(len=32) :: status
       open (newunit=u, file=path, status='replace', action='write', iostat=stat)
@@ -80,6 +80,20 @@ contains
       call write_summary_line(u, 'max_penetration_over_h', rec%max_penetration, m%has_tools)
       call write_summary_line(u, 'final_delta_over_h', merge(rec%pull_delta(max(rec%n_pull, 1)), &
                               0.0_dp, rec%n_pull > 0)/h, .true.)
+      ! energy balance: external work = elastic + plastic + penalty + friction
+      call energy_totals(m, s, energy)
+      call write_summary_line(u, 'energy_external_work', rec%work, .true.)
+      call write_summary_line(u, 'energy_elastic', energy(1), .true.)
+      call write_summary_line(u, 'energy_plastic', energy(2), .true.)
+      call write_summary_line(u, 'energy_penalty', energy(3), .true.)
+      call write_summary_line(u, 'energy_friction', energy(4), .true.)
+      call write_summary_line(u, 'energy_balance_error', (rec%work - sum(energy))/max(abs(rec%work), tiny(1.0_dp)), &
+                              rec%work > 0.0_dp)
+      pull_work = rec%work - rec%work_pull_start
+      call write_summary_line(u, 'pull_work', pull_work, rec%n_pull > 0)
+      call write_summary_line(u, 'pull_energy_balance_error', &
+                              (pull_work - sum(energy - rec%energy_pull_start))/max(abs(pull_work), tiny(1.0_dp)), &
+                              rec%n_pull > 0 .and. pull_work > 0.0_dp)
       write (u, '(a,i0)') 'increments = ', rec%increments
       write (u, '(a,i0)') 'newton_iterations = ', rec%newton_iterations
       write (u, '(a,i0)') 'cutbacks = ', rec%cutbacks

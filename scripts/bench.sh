@@ -1,0 +1,294 @@
+#!/usr/bin/env bash
+# bench.sh -- wall-clock benchmark of drawbead on the paper decks.
+#
+# Usage: scripts/bench.sh [options] [deck.nml ...]
+#
+# Builds the release program (make -s, default release flags -O2 -g), then
+# runs each deck N times, one run at a time, each into its own scratch
+# output directory (bin/drawbead DECK --output DIR, stdout to /dev/null),
+# and prints one table row per deck: the median, smallest and largest wall
+# time, and increments, newton_iterations, cutbacks and status from the
+# run's summary.txt. Without deck arguments it runs input/fig*.nml of the
+# repository. Deck paths are taken relative to the current directory (as
+# are file names inside the decks).
+#
+# Options:
+#   -n N              runs per deck (default 3; env BENCH_RUNS)
+#   --build-dir DIR   build in DIR and use DIR/drawbead, leaving build/ and
+#                     bin/ alone (env BENCH_BUILD_DIR; default: the normal
+#                     build/ and bin/drawbead)
+#   --fflags FLAGS    compile with FLAGS instead of the release flags (env
+#                     BENCH_FFLAGS); an FFLAGS set in the environment is
+#                     otherwise ignored, so that the default really is -O2 -g
+#   --no-build        do not run make; use the existing binary
+#   --keep DIR        write the run outputs under DIR and keep them
+#                     (default: a temporary directory, removed at the end)
+#   --markdown        print the table as a GitHub markdown table
+#   -h, --help        this text
+#
+# The table goes to stdout; lines starting with '#' (gnuplot and awk skip
+# them) give the binary, compiler flags and number of runs. Build output,
+# progress and the stderr of failed runs go to stderr.
+#
+# Exit status: 0 when every run exited 0; 1 when any run exited otherwise
+# (1 bad input, 2 no convergence; the table is still printed); 2 on a usage
+# or build error.
+set -u -o pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd) || exit 2
+
+usage() {
+    sed -n '2,/^set -u/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'
+}
+
+die() {
+    echo "bench.sh: $*" >&2
+    exit 2
+}
+
+runs=${BENCH_RUNS:-3}
+build_dir=${BENCH_BUILD_DIR:-}
+fflags=${BENCH_FFLAGS:-}
+do_build=1
+keep_dir=''
+markdown=0
+decks=()
+
+while (($# > 0)); do
+    case $1 in
+        -n)
+            (($# >= 2)) || die "-n needs a number"
+            runs=$2
+            shift 2
+            ;;
+        -n*)
+            runs=${1#-n}
+            shift
+            ;;
+        --build-dir)
+            (($# >= 2)) || die "--build-dir needs a directory"
+            build_dir=$2
+            shift 2
+            ;;
+        --build-dir=*)
+            build_dir=${1#*=}
+            shift
+            ;;
+        --fflags)
+            (($# >= 2)) || die "--fflags needs a value"
+            fflags=$2
+            shift 2
+            ;;
+        --fflags=*)
+            fflags=${1#*=}
+            shift
+            ;;
+        --no-build)
+            do_build=0
+            shift
+            ;;
+        --keep)
+            (($# >= 2)) || die "--keep needs a directory"
+            keep_dir=$2
+            shift 2
+            ;;
+        --keep=*)
+            keep_dir=${1#*=}
+            shift
+            ;;
+        --markdown)
+            markdown=1
+            shift
+            ;;
+        -h | --help)
+            usage
+            exit 0
+            ;;
+        --)
+            shift
+            decks+=("$@")
+            break
+            ;;
+        -*)
+            die "unknown option '$1' (see --help)"
+            ;;
+        *)
+            decks+=("$1")
+            shift
+            ;;
+    esac
+done
+
+[[ $runs =~ ^[1-9][0-9]*$ ]] || die "-n must be a positive integer (got '$runs')"
+
+if ((${#decks[@]} == 0)); then
+    shopt -s nullglob
+    decks=("$root"/input/fig*.nml)
+    shopt -u nullglob
+    ((${#decks[@]} > 0)) || die "no decks given and none found as $root/input/fig*.nml"
+fi
+for deck in "${decks[@]}"; do
+    [[ -f $deck && -r $deck ]] || die "cannot read deck '$deck'"
+done
+
+# ---------------------------------------------------------------------------
+# Build
+# ---------------------------------------------------------------------------
+make_args=(-s -C "$root")
+if [[ -n $build_dir ]]; then
+    [[ $build_dir == /* ]] || build_dir=$PWD/$build_dir
+    bin=$build_dir/drawbead
+    make_args+=("BUILD=$build_dir" "BIN=$bin")
+    stamp=$build_dir/flags.txt
+else
+    bin=$root/bin/drawbead
+    stamp=$root/build/flags.txt
+fi
+if [[ -n $fflags ]]; then
+    make_args+=("FFLAGS=$fflags")
+fi
+
+if ((do_build)); then
+    echo "bench.sh: make ${make_args[*]}" >&2
+    # FFLAGS from the environment would override the Makefile's release flags
+    env -u FFLAGS make "${make_args[@]}" all >&2 || die "build failed"
+fi
+[[ -x $bin ]] || die "no executable '$bin' (build it first, or drop --no-build)"
+
+# ---------------------------------------------------------------------------
+# Scratch space
+# ---------------------------------------------------------------------------
+if [[ -n $keep_dir ]]; then
+    mkdir -p "$keep_dir" || die "cannot create '$keep_dir'"
+    scratch=$(cd "$keep_dir" && pwd) || die "cannot enter '$keep_dir'"
+else
+    scratch=$(mktemp -d "${TMPDIR:-/tmp}/drawbead-bench.XXXXXX") ||
+        die "cannot create a temporary directory"
+    trap 'rm -rf "$scratch"' EXIT
+fi
+
+# ---------------------------------------------------------------------------
+# Helpers
+# ---------------------------------------------------------------------------
+
+# now -- wall-clock time in seconds with a fraction
+now() {
+    if [[ -n ${EPOCHREALTIME:-} ]]; then
+        printf '%s\n' "${EPOCHREALTIME/,/.}"
+    else
+        date +%s.%N
+    fi
+}
+
+# summary_value FILE KEY -- the value of 'KEY = value' in FILE, or '-'
+summary_value() {
+    local value
+    if [[ -f $1 ]]; then
+        value=$(awk -v key="$2" -F '=' '
+            { k = $1; gsub(/^[ \t]+|[ \t]+$/, "", k) }
+            k == key { v = substr($0, index($0, "=") + 1); gsub(/^[ \t]+|[ \t]+$/, "", v); print v; exit }
+        ' "$1")
+    fi
+    printf '%s\n' "${value:--}"
+}
+
+# stats T1 T2 ... -- "median min max" of the numbers, 3 decimals
+stats() {
+    printf '%s\n' "$@" | sort -g | awk '
+        { t[NR] = $1 }
+        END {
+            if (NR % 2) med = t[(NR + 1) / 2]; else med = (t[NR / 2] + t[NR / 2 + 1]) / 2
+            printf "%.3f %.3f %.3f\n", med, t[1], t[NR]
+        }'
+}
+
+# ---------------------------------------------------------------------------
+# Runs
+# ---------------------------------------------------------------------------
+failures=0
+rows=()
+for deck in "${decks[@]}"; do
+    name=$(basename "$deck")
+    name=${name%.nml}
+    times=()
+    deck_status=0
+    first_summary=''
+    for ((i = 1; i <= runs; i++)); do
+        dir=$scratch/$name/run$i
+        rm -rf "$dir"
+        mkdir -p "$dir" || die "cannot create '$dir'"
+        printf 'bench.sh: %s run %d/%d ... ' "$name" "$i" "$runs" >&2
+        t0=$(now)
+        "$bin" "$deck" --output "$dir" >/dev/null 2>"$dir.stderr"
+        rc=$?
+        t1=$(now)
+        t=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.6f", b - a }')
+        times+=("$t")
+        printf '%.3f s, exit %d\n' "$t" "$rc" >&2
+        if ((rc != 0)); then
+            deck_status=$rc
+            failures=$((failures + 1))
+            echo "bench.sh: $deck exited with status $rc; its stderr:" >&2
+            sed 's/^/    /' "$dir.stderr" >&2
+        fi
+        # the runs of a deck must agree: compare the counters with run 1
+        this=$(for key in status increments newton_iterations cutbacks; do
+            summary_value "$dir/summary.txt" "$key"
+        done | tr '\n' ' ')
+        if ((i == 1)); then
+            first_summary=$this
+        elif [[ $this != "$first_summary" ]]; then
+            echo "bench.sh: warning: $name run $i summary ($this) differs from run 1 ($first_summary)" >&2
+        fi
+    done
+    summary=$scratch/$name/run1/summary.txt
+    read -r med tmin tmax < <(stats "${times[@]}")
+    status=$(summary_value "$summary" status)
+    ((deck_status == 0)) || status="$status(exit $deck_status)"
+    fields=("$name" "$med" "$tmin" "$tmax")
+    for key in increments newton_iterations cutbacks; do
+        fields+=("$(summary_value "$summary" "$key")")
+    done
+    fields+=("$status")
+    # one tab-separated row per deck (deck names may hold blanks)
+    rows+=("$(IFS=$'\t'; printf '%s' "${fields[*]}")")
+done
+
+# ---------------------------------------------------------------------------
+# Table
+# ---------------------------------------------------------------------------
+flags='?'
+[[ -f $stamp ]] && flags=$(<"$stamp")
+echo "# drawbead benchmark: $runs run(s) per deck, wall seconds"
+echo "# binary: $bin"
+echo "# compiler and flags: $flags"
+echo "# host: $(uname -n), $(getconf _NPROCESSORS_ONLN 2>/dev/null || echo '?') cores, $(date '+%Y-%m-%d %H:%M')"
+if ((markdown)); then
+    echo
+    echo '| deck | median (s) | min (s) | max (s) | increments | newton_iterations | cutbacks | status |'
+    echo '| --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |'
+    for row in "${rows[@]}"; do
+        IFS=$'\t' read -r -a fields <<<"$row"
+        printf '| %s | %s | %s | %s | %s | %s | %s | %s |\n' "${fields[@]}"
+    done
+else
+    width=4
+    for row in "${rows[@]}"; do
+        name=${row%%$'\t'*}
+        if ((${#name} > width)); then width=${#name}; fi
+    done
+    format="%-${width}s %10s %8s %8s %11s %18s %9s  %s\n"
+    # shellcheck disable=SC2059 # the format holds only the computed width
+    printf "$format" '#deck' median_s min_s max_s increments newton_iterations cutbacks status
+    for row in "${rows[@]}"; do
+        IFS=$'\t' read -r -a fields <<<"$row"
+        # shellcheck disable=SC2059
+        printf "$format" "${fields[@]}"
+    done
+fi
+
+if ((failures > 0)); then
+    echo "bench.sh: $failures run(s) exited with a non-zero status" >&2
+    exit 1
+fi
+exit 0
