@@ -7,8 +7,10 @@
 # runs each deck N times, one run at a time, each into its own scratch
 # output directory (bin/drawbead DECK --output DIR, stdout to /dev/null),
 # and prints one table row per deck: the median, smallest and largest wall
-# time, and increments, newton_iterations, cutbacks and status from the
-# run's summary.txt. Without deck arguments it runs input/fig*.nml of the
+# time, the median CPU time the program reports (cpu_seconds), and
+# increments, newton_iterations, cutbacks and status from the run's
+# summary.txt (CPU time is less disturbed than wall time by other jobs on
+# the machine). Without deck arguments it runs input/fig*.nml of the
 # repository. Deck paths are taken relative to the current directory (as
 # are file names inside the decks).
 #
@@ -211,6 +213,7 @@ for deck in "${decks[@]}"; do
     name=$(basename "$deck")
     name=${name%.nml}
     times=()
+    cpus=()
     deck_status=0
     first_summary=''
     for ((i = 1; i <= runs; i++)); do
@@ -231,6 +234,8 @@ for deck in "${decks[@]}"; do
             echo "bench.sh: $deck exited with status $rc; its stderr:" >&2
             sed 's/^/    /' "$dir.stderr" >&2
         fi
+        cpu=$(summary_value "$dir/summary.txt" cpu_seconds)
+        if [[ $cpu != - ]]; then cpus+=("$cpu"); fi
         # the runs of a deck must agree: compare the counters with run 1
         this=$(for key in status increments newton_iterations cutbacks; do
             summary_value "$dir/summary.txt" "$key"
@@ -243,9 +248,13 @@ for deck in "${decks[@]}"; do
     done
     summary=$scratch/$name/run1/summary.txt
     read -r med tmin tmax < <(stats "${times[@]}")
+    cpu_med=-
+    if ((${#cpus[@]} > 0)); then
+        read -r cpu_med _ < <(stats "${cpus[@]}")
+    fi
     status=$(summary_value "$summary" status)
     ((deck_status == 0)) || status="$status(exit $deck_status)"
-    fields=("$name" "$med" "$tmin" "$tmax")
+    fields=("$name" "$med" "$tmin" "$tmax" "$cpu_med")
     for key in increments newton_iterations cutbacks; do
         fields+=("$(summary_value "$summary" "$key")")
     done
@@ -265,11 +274,11 @@ echo "# compiler and flags: $flags"
 echo "# host: $(uname -n), $(getconf _NPROCESSORS_ONLN 2>/dev/null || echo '?') cores, $(date '+%Y-%m-%d %H:%M')"
 if ((markdown)); then
     echo
-    echo '| deck | median (s) | min (s) | max (s) | increments | newton_iterations | cutbacks | status |'
-    echo '| --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |'
+    echo '| deck | median (s) | min (s) | max (s) | CPU (s) | increments | newton_iterations | cutbacks | status |'
+    echo '| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |'
     for row in "${rows[@]}"; do
         IFS=$'\t' read -r -a fields <<<"$row"
-        printf '| %s | %s | %s | %s | %s | %s | %s | %s |\n' "${fields[@]}"
+        printf '| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n' "${fields[@]}"
     done
 else
     width=4
@@ -277,9 +286,9 @@ else
         name=${row%%$'\t'*}
         if ((${#name} > width)); then width=${#name}; fi
     done
-    format="%-${width}s %10s %8s %8s %11s %18s %9s  %s\n"
+    format="%-${width}s %10s %8s %8s %8s %11s %18s %9s  %s\n"
     # shellcheck disable=SC2059 # the format holds only the computed width
-    printf "$format" '#deck' median_s min_s max_s increments newton_iterations cutbacks status
+    printf "$format" '#deck' median_s min_s max_s cpu_s increments newton_iterations cutbacks status
     for row in "${rows[@]}"; do
         IFS=$'\t' read -r -a fields <<<"$row"
         # shellcheck disable=SC2059

@@ -10,6 +10,7 @@ module analysis
    use deck, only: deck_type
    use hermite, only: n_gauss, gauss_wt
    use section, only: ih_sse, ih_spd
+   use contact, only: penalty_energy
    use band, only: band_matrix, band_init
    use mesh, only: half_band
    use model, only: model_type, state_type, load_type, load_init, gauss_position
@@ -218,8 +219,10 @@ contains
             nr%residual(0:nr%iterations)
          if (rec%localized .and. d%stop_at_localization) return
          ! grow after easy convergence, shrink after a hard one
-         if (nr%iterations <= 4) then
-            dt = min(1.5_dp*dt, d%max_increment)
+         if (nr%iterations <= 3) then
+            dt = min(2.0_dp*dt, d%max_increment)
+         else if (nr%iterations <= 5) then
+            dt = min(1.25_dp*dt, d%max_increment)
          else if (nr%iterations >= 8) then
             dt = max(0.6_dp*dt, d%min_increment)
          end if
@@ -247,7 +250,8 @@ contains
             energy(2) = energy(2) + dv*dot_product(m%wz, s%hn(ih_spd, :, ig, e))
             if (m%has_tools) then
                do it = 1, 2
-                  energy(3) = energy(3) + dv*0.5_dp*m%penalty*s%cn(8, ig, e, it)**2
+                  energy(3) = energy(3) + dv*penalty_energy(m%penalty, m%contact_smoothing, &
+                                                           s%cn(8, ig, e, it))
                   energy(4) = energy(4) + dv*s%cn(7, ig, e, it)
                end do
             end if

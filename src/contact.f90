@@ -10,6 +10,13 @@
 !> to the tool, which may move: p_rel = p - (0, shift)) and f the modified
 !> Coulomb law with one reversal (friction module).
 !>
+!> The Heaviside onset of (2.18) is smoothed over a small penetration delta:
+!> the normal pressure is k g(d) with g = d^2/(2 delta) for d < delta and
+!> g = d - delta/2 beyond, so the force is C1 in d.  Stations grazing a tool
+!> (the sheet lies exactly on both binder faces at full lock) then no longer
+!> switch the tangent between 0 and k from one Newton iterate to the next.
+!> delta = 0 is the paper's sharp onset.  Penalty energy: k G(d), G' = g.
+!>
 !> History column ch(n_chist) (model module):
 !>   1 active (1: in contact at the last converged state)   2 u_T
 !>   3 u_T^m (largest committed u_T)   4 sense of first sliding (+1, -1, 0 unknown)
@@ -21,7 +28,7 @@ module contact
    use friction, only: friction_law
    implicit none
    private
-   public :: contact_station, contact_commit
+   public :: contact_station, contact_commit, penalty_energy
 
 contains
 
@@ -29,6 +36,7 @@ contains
    !>  tool   [in]  the tool
    !>  shift  [in]  the tool's vertical rigid translation (lower tool: H)
    !>  k      [in]  penalty (force per reference length per unit penetration)
+   !>  delta  [in]  smoothing length of the contact onset (0: sharp)
    !>  mu     [in]  friction coefficient
    !>  eps_f  [in]  regularization length eps of (4.3)
    !>  p      [in]  current position of the station
@@ -36,11 +44,11 @@ contains
    !>  ch1    [out] trial history
    !>  f      [out] force on the sheet per unit reference length
    !>  kf     [out] d f / d p (non-symmetric with friction)
-   pure subroutine contact_station(tool, shift, k, mu, eps_f, p, chn, ch1, f, kf)
+   pure subroutine contact_station(tool, shift, k, delta, mu, eps_f, p, chn, ch1, f, kf)
       type(tool_type), intent(in) :: tool
-      real(dp), intent(in) :: shift, k, mu, eps_f, p(2), chn(:)
+      real(dp), intent(in) :: shift, k, delta, mu, eps_f, p(2), chn(:)
       real(dp), intent(out) :: ch1(:), f(2), kf(2, 2)
-      real(dp) :: prel(2), d, n(2), t(2), curv, ds, sense, ut, fr, dfr, dslip(2), tt
+      real(dp) :: prel(2), d, n(2), t(2), curv, ds, sense, ut, fr, dfr, dslip(2), tt, pn, dpn
       integer :: seg
       prel = [p(1), p(2) - shift]
       call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg)
@@ -52,9 +60,16 @@ contains
       if (d <= 0.0_dp) return
       ch1(1) = 1.0_dp
       ch1(8) = d
-      ! normal part: f = k d n, dd/dp = -n, dn/dp = curv (I - n n^T)
-      f = k*d*n
-      kf = k*(-outer(n, n) + d*curv*outer(t, t))
+      ! normal part: f = pn n with pn = k g(d), dd/dp = -n, dn/dp = curv (I - n n^T)
+      if (d < delta) then
+         pn = k*d*d/(2.0_dp*delta)
+         dpn = k*d/delta
+      else
+         pn = k*(d - 0.5_dp*delta)
+         dpn = k
+      end if
+      f = pn*n
+      kf = -dpn*outer(n, n) + pn*curv*outer(t, t)
       if (mu <= 0.0_dp .or. chn(1) < 0.5_dp) return
       ! friction: slip since the last converged state, measured along t;
       ! d(ds)/dp = t (1 - curv n.(p - p_old)) because t turns on an arc
@@ -70,14 +85,14 @@ contains
       ch1(3) = chn(3)
       ch1(4) = sense
       call friction_law(ut, chn(3), eps_f, fr, dfr)
-      tt = mu*k*d*fr*sense
+      tt = mu*pn*fr*sense
       ch1(9) = tt
       ch1(7) = chn(7) + 0.5_dp*(chn(9) + tt)*ds
       f = f - tt*t
       dslip = t*(1.0_dp - curv*dot_product(n, prel - chn(5:6)))
-      ! d(tt t)/dp = t (mu k sense)(fr dd/dp + d dfr sense dslip) + tt dt/dp,
+      ! d(tt t)/dp = t (mu sense)(fr dpn dd/dp + pn dfr sense dslip) + tt dt/dp,
       ! dt/dp = -curv n t^T
-      kf = kf - mu*k*sense*(fr*outer(t, -n) + d*dfr*sense*outer(t, dslip)) &
+      kf = kf - mu*sense*(fr*dpn*outer(t, -n) + pn*dfr*sense*outer(t, dslip)) &
            + tt*curv*outer(n, t)
    end subroutine contact_station
 
@@ -88,6 +103,20 @@ contains
       real(dp), intent(inout) :: ch(:)
       if (ch(1) > 0.5_dp) ch(3) = max(ch(3), ch(2))
    end subroutine contact_commit
+
+   !> PENALTY_ENERGY: stored energy k G(d) of a station penetrating by d
+   !> (G' = g of the smoothed onset; G = d^2/2 for delta = 0).
+   pure function penalty_energy(k, delta, d) result(energy)
+      real(dp), intent(in) :: k, delta, d
+      real(dp) :: energy
+      if (d <= 0.0_dp) then
+         energy = 0.0_dp
+      else if (d < delta) then
+         energy = k*d**3/(6.0_dp*delta)
+      else
+         energy = k*(0.5_dp*d*d - 0.5_dp*delta*d + delta*delta/6.0_dp)
+      end if
+   end function penalty_energy
 
    pure function outer(a, b) result(c)
       real(dp), intent(in) :: a(2), b(2)

@@ -10,7 +10,7 @@
 !>              swift_k, swift_eps0, swift_n, voce_sigma0, voce_q, voce_b,
 !>              curve_file, thickness_points
 !>   &tools     bead, r1, r2, b1, b2, h1, h2, upper_profile, lower_profile,
-!>              penalty, friction, friction_eps
+!>              penalty, friction, friction_eps, contact_smoothing
 !>   &loading   lock_depth, pull_distance, initial_increment,
 !>              min_increment, max_increment, max_iterations, tolerance
 !>
@@ -101,6 +101,7 @@ module deck
       real(dp) :: penalty = 0.045_dp                  ! k h / E
       real(dp) :: friction = 0.0_dp                   ! mu
       real(dp) :: friction_eps = 0.0333_dp            ! eps of (4.3), units of h
+      real(dp) :: contact_smoothing = 1.0e-3_dp       ! penalty onset smoothed over this penetration, units of h
       ! &loading
       real(dp) :: lock_depth = unset                  ! h1 + r1 with a bead, else 0
       real(dp) :: pull_distance = unset               ! 10 h
@@ -448,9 +449,9 @@ contains
       character(len=16) :: bead
       real(dp) :: r1, r2, b1, b2, h1, h2
       character(len=512) :: upper_profile, lower_profile
-      real(dp) :: penalty, friction, friction_eps
+      real(dp) :: penalty, friction, friction_eps, contact_smoothing
       namelist /tools/ bead, r1, r2, b1, b2, h1, h2, upper_profile, lower_profile, &
-         penalty, friction, friction_eps
+         penalty, friction, friction_eps, contact_smoothing
       character(len=echo_len) :: lines(echo_rows)
 
       bead = d%bead
@@ -465,6 +466,7 @@ contains
       penalty = d%penalty
       friction = d%friction
       friction_eps = d%friction_eps
+      contact_smoothing = d%contact_smoothing
       select case (action)
       case (act_read_unit)
          read (unit, nml=tools, iostat=ios, iomsg=msg)
@@ -488,6 +490,7 @@ contains
       d%penalty = penalty
       d%friction = friction
       d%friction_eps = friction_eps
+      d%contact_smoothing = contact_smoothing
    end subroutine nml_tools
 
    !> nml_loading -- namelist &loading (arguments as group_io).
@@ -1024,6 +1027,7 @@ contains
       call check_real(errs, at(p, 'tools', 'friction'), d%friction, lo=0.0_dp)
       call check_real(errs, at(p, 'tools', 'friction_eps'), d%friction_eps, &
                       lo=0.0_dp, lo_open=.true.)
+      call check_real(errs, at(p, 'tools', 'contact_smoothing'), d%contact_smoothing, lo=0.0_dp)
 
       ! &loading
       call check_real(errs, at(p, 'loading', 'lock_depth'), d%lock_depth, lo=0.0_dp)

@@ -82,6 +82,7 @@ program drawbead
    end select
    m%penalty = d%penalty*d%youngs_modulus/h
    m%friction = d%friction
+   m%contact_smoothing = d%contact_smoothing*h
    m%friction_eps = d%friction_eps*h
    call state_init(m, s)
    call run_record_init(rec)

@@ -24,6 +24,7 @@ module model
       logical :: has_tools = .false.
       type(tool_type) :: tool(2)             ! 1 upper (fixed), 2 lower (moves by H)
       real(dp) :: penalty = 0.0_dp           ! k, N/mm^3 (force per ref length per mm)
+      real(dp) :: contact_smoothing = 0.0_dp ! delta, mm: smoothed penalty onset
       real(dp) :: friction = 0.0_dp          ! mu
       real(dp) :: friction_eps = 1.0_dp      ! eps of (4.3), mm
    end type model_type

@@ -77,7 +77,7 @@ contains
                p(1) = p(1) + m%x(e) + gauss_xi(ig)*le
                dv = gauss_wt(ig)*le
                do it = 1, 2
-                  call contact_station(m%tool(it), shifts(it), m%penalty, m%friction, &
+                  call contact_station(m%tool(it), shifts(it), m%penalty, m%contact_smoothing, m%friction, &
                                        m%friction_eps, p, s%cn(:, ig, e, it), &
                                        s%c1(:, ig, e, it), fc, kc)
                   ! the tool pushes the sheet with fc: it enters r = f_int - f_ext with -
@@ -145,26 +145,25 @@ contains
       do it = 0, min(max_iter, max_newton_history)
          call assemble(m, s, ld, kb, r, f_scale, pnewdt)
          res%iterations = it
-         ! a Newton iterate that a material point cannot take (a fibre
-         ! inverted, a failed return map) is backtracked along the last
-         ! correction before the increment itself is cut
+         rnorm = scaled_norm(m, ld, r, f_scale)
+         ! backtracking line search: an iterate that a material point cannot
+         ! take (a fibre inverted, a failed return map) or whose residual grew
+         ! more than fourfold (typically a station thrown deep into a tool) is
+         ! pulled back along the last correction before the increment is cut
          backtrack = 0
-         do while (pnewdt < 1.0_dp .and. it > 0 .and. backtrack < 4)
+         do while (it > 0 .and. backtrack < 4)
+            if (pnewdt >= 1.0_dp .and. rnorm <= 4.0_dp*res%residual(max(it - 1, 0))) exit
             backtrack = backtrack + 1
             du = 0.5_dp*du
             s%u1 = s%u1 - du
             call assemble(m, s, ld, kb, r, f_scale, pnewdt)
+            rnorm = scaled_norm(m, ld, r, f_scale)
          end do
          if (pnewdt < 1.0_dp) then
             res%pnewdt = pnewdt
             res%status = newton_cutback
             return
          end if
-         du = merge(0.0_dp, r, ld%fixed)
-         do i = 2, size(du), 2
-            du(i) = du(i)/m%thickness
-         end do
-         rnorm = norm2(du)/max(f_scale, 1.0e-12_dp*m%youngs*m%thickness)
          res%residual(it) = rnorm
          if (rnorm /= rnorm .or. rnorm > huge(1.0_dp)) then
             res%status = newton_diverged
@@ -211,6 +210,26 @@ contains
       end do
       res%status = newton_diverged
    end subroutine newton_solve
+
+   !> SCALED_NORM: ||r|| over the free dofs, moments divided by the thickness,
+   !> relative to the force scale (floored at 1e-12 E h).
+   pure function scaled_norm(m, ld, r, f_scale) result(rnorm)
+      type(model_type), intent(in) :: m
+      type(load_type), intent(in) :: ld
+      real(dp), intent(in) :: r(:), f_scale
+      real(dp) :: rnorm
+      integer :: i
+      rnorm = 0.0_dp
+      do i = 1, size(r)
+         if (ld%fixed(i)) cycle
+         if (mod(i, 2) == 0) then
+            rnorm = rnorm + (r(i)/m%thickness)**2
+         else
+            rnorm = rnorm + r(i)**2
+         end if
+      end do
+      rnorm = sqrt(rnorm)/max(f_scale, 1.0e-12_dp*m%youngs*m%thickness)
+   end function scaled_norm
 
    !> COMMIT_STATE: accept the trial state as converged; update the lagged
    !> station distances and the localization indicator of every Gauss station.
