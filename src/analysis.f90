@@ -167,7 +167,7 @@ contains
          punch = s%tool_force(2, 2)
          lift = -s%tool_force(2, 1)
          pen = 0.0_dp
-         if (m%has_tools) pen = maxval(s%cn(8, :, :, :))/h
+         if (m%has_tools) pen = max(0.0_dp, maxval(s%cn(8, :, :, :)))/h
          rec%max_penetration = max(rec%max_penetration, pen)
          min_ind = minval(s%indicator)
          rec%min_indicator = min_ind

@@ -21,7 +21,8 @@
 !>   1 active (1: in contact at the last converged state)   2 u_T
 !>   3 u_T^m (largest committed u_T)   4 sense of first sliding (+1, -1, 0 unknown)
 !>   5,6 position relative to the tool   7 friction dissipation (per ref length)
-!>   8 penetration d   9 friction traction along t (signed, on the tool)
+!>   8 signed penetration d (< 0: the gap)   9 friction traction along t (signed)
+
 module contact
    use kinds, only: dp
    use tools, only: tool_type, tool_gap
@@ -49,6 +50,7 @@ contains
       real(dp), intent(in) :: shift, k, delta, mu, eps_f, p(2), chn(:)
       real(dp), intent(out) :: ch1(:), f(2), kf(2, 2)
       real(dp) :: prel(2), d, n(2), t(2), curv, ds, sense, ut, fr, dfr, dslip(2), tt, pn, dpn
+      real(dp) :: dut(2)
       integer :: seg
       prel = [p(1), p(2) - shift]
       call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg)
@@ -57,9 +59,9 @@ contains
       ch1 = 0.0_dp
       ch1(5:6) = prel
       ch1(7) = chn(7)
+      ch1(8) = d
       if (d <= 0.0_dp) return
       ch1(1) = 1.0_dp
-      ch1(8) = d
       ! normal part: f = pn n with pn = k g(d), dd/dp = -n, dn/dp = curv (I - n n^T)
       if (d < delta) then
          pn = k*d*d/(2.0_dp*delta)
@@ -70,16 +72,22 @@ contains
       end if
       f = pn*n
       kf = -dpn*outer(n, n) + pn*curv*outer(t, t)
+      ! friction acts once the station's contact history has started, i.e.
+      ! it was in contact at the last converged state (DESIGN §6)
       if (mu <= 0.0_dp .or. chn(1) < 0.5_dp) return
       ! friction: slip since the last converged state, measured along t;
       ! d(ds)/dp = t (1 - curv n.(p - p_old)) because t turns on an arc
       ds = dot_product(t, prel - chn(5:6))
-      sense = chn(4)
-      if (abs(sense) < 0.5_dp) then
+      dslip = t*(1.0_dp - curv*dot_product(n, prel - chn(5:6)))
+      if (abs(chn(4)) < 0.5_dp) then
+         ! in contact, not slid yet: the first non-zero slip sets the sense
          sense = merge(1.0_dp, -1.0_dp, ds >= 0.0_dp)
          ut = abs(ds)
+         dut = sense*dslip
       else
+         sense = chn(4)
          ut = chn(2) + sense*ds
+         dut = sense*dslip
       end if
       ch1(2) = ut
       ch1(3) = chn(3)
@@ -89,11 +97,9 @@ contains
       ch1(9) = tt
       ch1(7) = chn(7) + 0.5_dp*(chn(9) + tt)*ds
       f = f - tt*t
-      dslip = t*(1.0_dp - curv*dot_product(n, prel - chn(5:6)))
-      ! d(tt t)/dp = t (mu sense)(fr dpn dd/dp + pn dfr sense dslip) + tt dt/dp,
-      ! dt/dp = -curv n t^T
-      kf = kf - mu*sense*(fr*dpn*outer(t, -n) + pn*dfr*sense*outer(t, dslip)) &
-           + tt*curv*outer(n, t)
+      ! d(tt t)/dp = t (mu sense)(fr dpn dd/dp + pn dfr dut) + tt dt/dp,
+      ! dd/dp = -n, dt/dp = -curv n t^T
+      kf = kf - mu*sense*outer(t, -fr*dpn*n + pn*dfr*dut) + tt*curv*outer(n, t)
    end subroutine contact_station
 
    !> CONTACT_COMMIT: at convergence, start or continue a station's history.

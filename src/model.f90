@@ -49,6 +49,7 @@ module model
       real(dp), allocatable :: indicator(:, :)           ! localization indicator, converged
       real(dp) :: shift = 0.0_dp                         ! converged lower-tool rise H
       real(dp) :: tool_force(2, 2) = 0.0_dp              ! (x, y) force of tool 1, 2 on the sheet, trial
+      integer :: n_contact = 0                           ! stations in contact, trial
    end type state_type
 
 contains
@@ -96,6 +97,12 @@ contains
       end do
       s%h1 = s%hn
       s%cn = 0.0_dp
+      do e = 1, m%n_el
+         do ig = 1, n_gauss
+            ! the flat sheet at y = 0 (relative to both tools at H = 0)
+            s%cn(5, ig, e, :) = gauss_position(m, e, ig)
+         end do
+      end do
       s%c1 = s%cn
       s%gp = 0.0_dp
       s%indicator = 1.0_dp

@@ -6,6 +6,7 @@
 !> their equations replaced by du_i = 0.
 module solver
    use kinds, only: dp
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use hermite, only: n_gauss, gauss_xi, gauss_wt, hermite_shape
    use mesh, only: element_dofs, half_band, dofs_per_node
    use band, only: band_matrix, band_init, band_zero, band_add, band_fix_dof, band_solve
@@ -58,6 +59,7 @@ contains
       f_scale = 0.0_dp
       shifts = [0.0_dp, ld%tool_shift]
       s%tool_force = 0.0_dp
+      s%n_contact = 0
       do e = 1, m%n_el
          dofs = element_dofs(e)
          le = m%x(e + 1) - m%x(e)
@@ -83,6 +85,7 @@ contains
                   ! the tool pushes the sheet with fc: it enters r = f_int - f_ext with -
                   re = re - dv*matmul(fc, nm)
                   s%tool_force(:, it) = s%tool_force(:, it) + dv*fc
+                  if (s%c1(1, ig, e, it) > 0.5_dp) s%n_contact = s%n_contact + 1
                   ke = ke - dv*matmul(transpose(nm), matmul(kc, nm))
                end do
             end do
@@ -140,32 +143,50 @@ contains
       type(newton_result), intent(out) :: res
       real(dp) :: du(size(r)), f_scale, pnewdt, rnorm, cnorm
       integer :: it, i, info, backtrack
+      real(dp) :: g0, g1, alpha
+      integer :: n_contact_prev
       where (ld%fixed) s%u1 = ld%u_fixed
       cnorm = huge(1.0_dp)
       do it = 0, min(max_iter, max_newton_history)
+         n_contact_prev = s%n_contact
          call assemble(m, s, ld, kb, r, f_scale, pnewdt)
          res%iterations = it
-         rnorm = scaled_norm(m, ld, r, f_scale)
-         ! backtracking line search: an iterate that a material point cannot
-         ! take (a fibre inverted, a failed return map) or whose residual grew
-         ! more than fourfold (typically a station thrown deep into a tool) is
-         ! pulled back along the last correction before the increment is cut
+         ! line search along the last correction du where the step changed
+         ! the set of contact stations (the residual is not smooth there):
+         ! accept the full step unless the work of the new residual on du,
+         ! g1 = du.r(u + du), exceeds that of the old, g0 = du.r(u) (a far
+         ! overshoot, e.g. a station thrown deep into a tool); then take the
+         ! secant step g0/(g0 - g1), clamped to
+         ! [0.1, 1].  An iterate a material point cannot take (a fibre
+         ! inverted, a failed return map) is halved back instead.
          backtrack = 0
-         do while (it > 0 .and. backtrack < 4)
-            if (pnewdt >= 1.0_dp .and. rnorm <= 4.0_dp*res%residual(max(it - 1, 0))) exit
+         g1 = 0.0_dp
+         if (it > 0) g1 = dot_product(du, merge(0.0_dp, r, ld%fixed))
+         do while (it > 0 .and. backtrack < 3)
+            if (pnewdt >= 1.0_dp) then
+               if (s%n_contact == n_contact_prev .or. abs(g1) <= abs(g0)) exit
+            end if
             backtrack = backtrack + 1
-            du = 0.5_dp*du
-            s%u1 = s%u1 - du
+            if (pnewdt < 1.0_dp) then
+               alpha = 0.5_dp
+            else
+               alpha = min(1.0_dp, max(0.1_dp, g0/(g0 - g1)))
+               if (alpha >= 1.0_dp) exit
+            end if
+            s%u1 = s%u1 - (1.0_dp - alpha)*du
+            du = alpha*du
+            g0 = alpha*g0
             call assemble(m, s, ld, kb, r, f_scale, pnewdt)
-            rnorm = scaled_norm(m, ld, r, f_scale)
+            g1 = dot_product(du, merge(0.0_dp, r, ld%fixed))
          end do
+         rnorm = scaled_norm(m, ld, r, f_scale)
          if (pnewdt < 1.0_dp) then
             res%pnewdt = pnewdt
             res%status = newton_cutback
             return
          end if
          res%residual(it) = rnorm
-         if (rnorm /= rnorm .or. rnorm > huge(1.0_dp)) then
+         if (.not. ieee_is_finite(rnorm)) then
             res%status = newton_diverged
             return
          end if
@@ -197,6 +218,7 @@ contains
             res%singular_pivot = info
             return
          end if
+         g0 = dot_product(du, merge(0.0_dp, r, ld%fixed))
          s%u1 = s%u1 + du
          cnorm = 0.0_dp
          do i = 1, size(du)
