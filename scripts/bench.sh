@@ -28,9 +28,10 @@
 #   --markdown        print the table as a GitHub markdown table
 #   -h, --help        this text
 #
-# The table goes to stdout; lines starting with '#' (gnuplot and awk skip
-# them) give the binary, compiler flags and number of runs. Build output,
-# progress and the stderr of failed runs go to stderr.
+# The table goes to stdout, after lines starting with '#' (an HTML comment
+# with --markdown) that give the number of runs, the binary, the compiler
+# and flags, and the host with its load average. Build output, progress and
+# the stderr of failed runs go to stderr.
 #
 # Exit status: 0 when every run exited 0; 1 when any run exited otherwise
 # (1 bad input, 2 no convergence; the table is still printed); 2 on a usage
@@ -268,11 +269,15 @@ done
 # ---------------------------------------------------------------------------
 flags='?'
 [[ -f $stamp ]] && flags=$(<"$stamp")
-echo "# drawbead benchmark: $runs run(s) per deck, wall seconds"
-echo "# binary: $bin"
-echo "# compiler and flags: $flags"
-echo "# host: $(uname -n), $(getconf _NPROCESSORS_ONLN 2>/dev/null || echo '?') cores, $(date '+%Y-%m-%d %H:%M')"
+info=("drawbead benchmark: $runs run(s) per deck, wall seconds"
+    "binary: $bin"
+    "compiler and flags: $flags"
+    "host: $(uname -n), $(getconf _NPROCESSORS_ONLN 2>/dev/null || echo '?') cores, load average $(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null || echo '?'), $(date '+%Y-%m-%d %H:%M')")
 if ((markdown)); then
+    # an HTML comment: kept with the table, not rendered
+    echo '<!--'
+    printf '%s\n' "${info[@]}"
+    echo '-->'
     echo
     echo '| deck | median (s) | min (s) | max (s) | CPU (s) | increments | newton_iterations | cutbacks | status |'
     echo '| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |'
@@ -281,6 +286,7 @@ if ((markdown)); then
         printf '| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n' "${fields[@]}"
     done
 else
+    printf '# %s\n' "${info[@]}"
     width=4
     for row in "${rows[@]}"; do
         name=${row%%$'\t'*}

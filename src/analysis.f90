@@ -104,7 +104,7 @@ contains
       type(load_type) :: ld
       type(newton_result) :: nr
       real(dp) :: p, dt, dt_prev, h, eh, r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el)
-      real(dp) :: reaction, punch, lift, pen, frac, best, min_ind
+      real(dp) :: reaction, punch, lift, pen, frac, best, min_ind, force_change
       integer :: e, ig, e_cr, ig_cr
       logical :: have_prev
       character(len=16) :: tag
@@ -155,17 +155,31 @@ contains
             end if
             cycle
          end if
+         ! forces: N = internal force at the pulled dof, F = lower tool upward
+         ! force on the sheet, lift = upward force of the sheet on the upper tool
+         reaction = r(m%n_dof - 3)
+         punch = s%tool_force(2, 2)
+         lift = -s%tool_force(2, 1)
+         ! relative change of the phase's force in this increment (scale
+         ! floored at 1e-5 E h): a jump of more than half from an established
+         ! force (> 1e-4 E h, so not the first elastic ramp) is not resolved
+         ! (the closing binder's final squeeze): redo the increment smaller
+         force_change = abs(merge(punch, reaction, phase == 'lock') - rec%last_conjugate)/ &
+                        max(abs(rec%last_conjugate), abs(merge(punch, reaction, phase == 'lock')), &
+                            1.0e-5_dp*eh)
+         if (force_change > 0.5_dp .and. abs(rec%last_conjugate) > 1.0e-4_dp*eh .and. &
+             dt > 4.0_dp*d%min_increment) then
+            dt = 0.25_dp*dt
+            have_prev = .false.
+            s%u1 = s%u
+            cycle
+         end if
          ind_old = s%indicator
          u_prev = s%u
          dt_prev = dt
          call commit_state(m, s, ld%tool_shift)
          p = p + dt
          rec%increments = rec%increments + 1
-         ! forces: N = internal force at the pulled dof, F = lower tool upward
-         ! force on the sheet, lift = upward force of the sheet on the upper tool
-         reaction = r(m%n_dof - 3)
-         punch = s%tool_force(2, 2)
-         lift = -s%tool_force(2, 1)
          pen = 0.0_dp
          if (m%has_tools) pen = max(0.0_dp, maxval(s%cn(8, :, :, :)))/h
          rec%max_penetration = max(rec%max_penetration, pen)
@@ -218,8 +232,12 @@ contains
          if (d%log_residuals) write (output_unit, '(a,*(es9.2))') '      residuals:', &
             nr%residual(0:nr%iterations)
          if (rec%localized .and. d%stop_at_localization) return
-         ! grow after easy convergence, shrink after a hard one
-         if (nr%iterations <= 3) then
+         ! grow after easy convergence, shrink after a hard one; and resolve
+         ! fast changes of the force (the closing binder's final squeeze, the
+         ! first slip over a radius): at most ~10% change per increment
+         if (force_change > 0.1_dp) then
+            dt = max(max(0.25_dp, 0.1_dp/force_change)*dt, d%min_increment)
+         else if (nr%iterations <= 3) then
             dt = min(2.0_dp*dt, d%max_increment)
          else if (nr%iterations <= 5) then
             dt = min(1.25_dp*dt, d%max_increment)
