@@ -8,37 +8,79 @@ module summary
    use output, only: write_summary_line
    implicit none
    private
-   public :: write_summary, steady_force
+   public :: write_summary, steady_force, summary_value
 
 contains
 
-   !> STEADY_FORCE: plateau of N(delta): reached when the sheet has been pulled
-   !> at least 3h and N varied by at most 1% of its final value over the last 2h.
+   !> STEADY_FORCE: plateau of N(delta).  The first window [delta - 2h, delta]
+   !> (delta >= 3h) over which N varies by at most 3% of its mean is the
+   !> steady state (paper Fig. 9: reached by delta ~ 4h); the force is the
+   !> window's mean.  A sheet of finite length has no true steady state (its
+   !> free end comes closer to the bead), hence the tolerance.
    !>  rec     [in]  run record with the pull history
    !>  h       [in]  thickness
-   !>  force   [out] final N when steady
+   !>  force   [out] mean N over the first steady window
+   !>  at      [out] delta at the end of that window
    !>  steady  [out] whether a plateau was reached
-   pure subroutine steady_force(rec, h, force, steady)
+   pure subroutine steady_force(rec, h, force, at, steady)
       type(run_record), intent(in) :: rec
       real(dp), intent(in) :: h
-      real(dp), intent(out) :: force
+      real(dp), intent(out) :: force, at
       logical, intent(out) :: steady
-      integer :: i, n
-      real(dp) :: lo, hi
+      integer :: i, j, n, cnt
+      real(dp) :: lo, hi, total
       steady = .false.
       force = 0.0_dp
+      at = 0.0_dp
       n = rec%n_pull
-      if (n < 3) return
-      if (rec%pull_delta(n) < 3.0_dp*h) return
-      lo = rec%pull_force(n); hi = lo
-      do i = n, 1, -1
-         if (rec%pull_delta(i) < rec%pull_delta(n) - 2.0_dp*h) exit
-         lo = min(lo, rec%pull_force(i))
-         hi = max(hi, rec%pull_force(i))
+      do j = 1, n
+         if (rec%pull_delta(j) < 3.0_dp*h) cycle
+         lo = huge(1.0_dp); hi = -huge(1.0_dp); total = 0.0_dp; cnt = 0
+         do i = j, 1, -1
+            if (rec%pull_delta(i) < rec%pull_delta(j) - 2.0_dp*h) exit
+            lo = min(lo, rec%pull_force(i))
+            hi = max(hi, rec%pull_force(i))
+            total = total + rec%pull_force(i)
+            cnt = cnt + 1
+         end do
+         if (cnt >= 3 .and. hi - lo <= 0.03_dp*abs(total/cnt)) then
+            steady = .true.
+            force = total/cnt
+            at = rec%pull_delta(j)
+            return
+         end if
       end do
-      force = rec%pull_force(n)
-      steady = (hi - lo) <= 0.01_dp*abs(force)
    end subroutine steady_force
+
+   !> SUMMARY_VALUE: read one 'key = value' line of a summary file back.
+   !>  path   [in]  summary.txt
+   !>  key    [in]  the key
+   !>  found  [out] .false. if the file or key is missing or the value is 'none'
+   !>  value  (result) the number, 0 when not found
+   function summary_value(path, key, found) result(value)
+      character(len=*), intent(in) :: path, key
+      logical, intent(out) :: found
+      real(dp) :: value
+      character(len=256) :: line
+      integer :: u, ios, eq
+      value = 0.0_dp
+      found = .false.
+      open (newunit=u, file=path, status='old', action='read', iostat=ios)
+      if (ios /= 0) return
+      do
+         read (u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         eq = index(line, '=')
+         if (eq == 0 .or. line(1:1) == '#') cycle
+         if (trim(adjustl(line(1:eq - 1))) == key) then
+            read (line(eq + 1:), *, iostat=ios) value
+            found = ios == 0
+            if (.not. found) value = 0.0_dp
+            exit
+         end if
+      end do
+      close (u)
+   end function summary_value
 
    !> WRITE_SUMMARY: write summary.txt.
    !>  path [in] file; m, s, d, rec [in] the run; cpu [in] CPU seconds
@@ -50,7 +92,7 @@ contains
       type(run_record), intent(in) :: rec
       real(dp), intent(in) :: cpu
       integer :: u, stat
-      real(dp) :: h, eh, fsteady, thinning, energy(4), pull_work
+      real(dp) :: h, eh, fsteady, steady_at, thinning, energy(4), pull_work
       logical :: steady
       character(len=32) :: status
       open (newunit=u, file=path, status='replace', action='write', iostat=stat)
@@ -64,7 +106,7 @@ contains
       else
          status = 'completed'
       end if
-      call steady_force(rec, h, fsteady, steady)
+      call steady_force(rec, h, fsteady, steady_at, steady)
       thinning = 1.0_dp - minval(s%hn(ih_zbar, m%npt, :, :) - s%hn(ih_zbar, 1, :, :))/h
       write (u, '(a)') '# drawbead summary: '//trim(d%title), 'status = '//trim(status)
       write (u, '(a)') 'localization_phase = '//trim(merge(rec%loc_phase, 'none    ', rec%localized))
@@ -75,6 +117,7 @@ contains
       call write_summary_line(u, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
       call write_summary_line(u, 'final_force_over_Eh', rec%last_force/eh, rec%n_pull > 0)
       call write_summary_line(u, 'steady_force_over_Eh', fsteady/eh, steady)
+      call write_summary_line(u, 'steady_reached_at_delta_over_h', steady_at/h, steady)
       call write_summary_line(u, 'final_lift_over_Eh', rec%last_lift/eh, rec%n_pull > 0 .and. m%has_tools)
       call write_summary_line(u, 'max_thinning', thinning, .true.)
       call write_summary_line(u, 'max_penetration_over_h', rec%max_penetration, m%has_tools)
