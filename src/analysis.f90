@@ -19,13 +19,17 @@ module analysis
    use output, only: output_files, write_row
    implicit none
    private
-   public :: run_record, run_phase, phase_load, run_record_init, energy_totals
+   public :: run_record, run_phase, phase_load, run_record_init, energy_totals, nonlocal_indicator
 
    !> What the run has found so far (written to summary.txt).
    type :: run_record
       logical :: localized = .false.
       character(len=8) :: loc_phase = ''
       real(dp) :: load_cr = 0.0_dp, s_star = 0.0_dp
+      ! the mesh-objective criterion (indicator averaged over tearing_length)
+      logical :: nl_localized = .false.
+      character(len=8) :: nl_phase = ''
+      real(dp) :: nl_load_cr = 0.0_dp, nl_s_star = 0.0_dp
       real(dp) :: peak_force = 0.0_dp, lock_force = 0.0_dp, last_force = 0.0_dp
       real(dp) :: last_lift = 0.0_dp
       integer :: increments = 0, newton_iterations = 0, cutbacks = 0
@@ -101,11 +105,12 @@ contains
       type(output_files), intent(in) :: out
       type(run_record), intent(inout) :: rec
       type(band_matrix) :: kb
+      real(dp) :: nl_old(n_gauss*m%n_el), nl_new(n_gauss*m%n_el)
       type(load_type) :: ld
       type(newton_result) :: nr
       real(dp) :: p, dt, dt_prev, h, eh, r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el)
-      real(dp) :: reaction, punch, lift, pen, frac, best, min_ind, force_change
-      integer :: e, ig, e_cr, ig_cr
+      real(dp) :: reaction, punch, lift, pen, frac, min_ind, force_change
+      integer :: k_cr
       logical :: have_prev
       character(len=16) :: tag
       h = m%thickness
@@ -116,6 +121,7 @@ contains
       ! the force doing work on the load parameter: F while locking (starts
       ! at 0 on the flat sheet), N while pulling (the reaction reached so far)
       rec%last_conjugate = merge(0.0_dp, rec%last_reaction, phase == 'lock')
+      nl_old = nonlocal_indicator(m, s%indicator, d%tearing_length*h)
       if (phase == 'pull') then
          rec%work_pull_start = rec%work
          call energy_totals(m, s, rec%energy_pull_start)
@@ -148,9 +154,12 @@ contains
             have_prev = .false.
             s%u1 = s%u
             if (dt < d%min_increment) then
-               rec%status = 2
                write (rec%message, '(3a,es10.3,a)') 'no convergence in ', phase, &
                   ' at load/h = ', p/h, ': increment below min_increment'
+               ! past the paper's tearing point the sheet may have no nearby
+               ! equilibrium: that ends the run normally (the neck has formed)
+               if (rec%localized .and. d%stop_at_localization) return
+               rec%status = 2
                return
             end if
             cycle
@@ -187,26 +196,32 @@ contains
          rec%min_indicator = min_ind
          ! localization (3.1): first Gauss station whose indicator crosses zero,
          ! interpolated linearly inside the increment
+         ! localization (3.1): the first Gauss station whose indicator crosses
+         ! zero, interpolated linearly inside the increment (the paper's
+         ! pointwise criterion) ...
          if (.not. rec%localized) then
-            best = 2.0_dp
-            e_cr = 0; ig_cr = 0
-            do e = 1, m%n_el
-               do ig = 1, n_gauss
-                  if (ind_old(ig, e) > 0.0_dp .and. s%indicator(ig, e) <= 0.0_dp) then
-                     frac = ind_old(ig, e)/(ind_old(ig, e) - s%indicator(ig, e))
-                     if (frac < best) then
-                        best = frac; e_cr = e; ig_cr = ig
-                     end if
-                  end if
-               end do
-            end do
-            if (e_cr > 0) then
+            call first_crossing(reshape(ind_old, [size(ind_old)]), &
+                                reshape(s%indicator, [size(ind_old)]), frac, k_cr)
+            if (k_cr > 0) then
                rec%localized = .true.
                rec%loc_phase = phase
-               rec%load_cr = p - dt + best*dt
-               rec%s_star = gauss_position(m, e_cr, ig_cr)
+               rec%load_cr = p - dt + frac*dt
+               rec%s_star = gauss_position(m, (k_cr - 1)/n_gauss + 1, mod(k_cr - 1, n_gauss) + 1)
             end if
          end if
+         ! ... and the mesh-objective one: the indicator averaged over a
+         ! reference length tearing_length*h around each station
+         nl_new = nonlocal_indicator(m, s%indicator, d%tearing_length*h)
+         if (.not. rec%nl_localized) then
+            call first_crossing(nl_old, nl_new, frac, k_cr)
+            if (k_cr > 0) then
+               rec%nl_localized = .true.
+               rec%nl_phase = phase
+               rec%nl_load_cr = p - dt + frac*dt
+               rec%nl_s_star = gauss_position(m, (k_cr - 1)/n_gauss + 1, mod(k_cr - 1, n_gauss) + 1)
+            end if
+         end if
+         nl_old = nl_new
          ! external work, trapezoid in the load parameter, plus the dead loads
          rec%work = rec%work + 0.5_dp*dt*(rec%last_conjugate + merge(punch, reaction, phase == 'lock')) &
                     + dot_product(ld%f_ext, s%u - u_prev)
@@ -224,14 +239,17 @@ contains
             call write_row(out%pull, [p/h, reaction/eh, reaction, real(nr%iterations, dp), &
                                       dt/h, min_ind, lift/eh, lift, pen, punch/eh])
          end if
-         write (output_unit, '(a5,i6,a,es11.4,a,es9.2,a,i3,a,es9.2,a,es10.3,a,es11.4,a)') &
+         ! LOCALIZED once the paper's criterion has been met, NONLOCAL once the
+         ! mesh-objective one has
+         write (output_unit, '(a5,i6,a,es11.4,a,es9.2,a,i3,a,es9.2,a,es10.3,a,es11.4,2a)') &
             phase, rec%increments, '  load/h=', p/h, '  d/h=', dt/h, '  it', nr%iterations, &
             '  res', nr%residual(nr%iterations), '  loc', min_ind, '  force/Eh=', &
-            merge(punch, reaction, phase == 'lock')/eh, merge(' LOCALIZED', '          ', &
-                                                              rec%localized .and. rec%loc_phase == phase .and. e_cr > 0)
+            merge(punch, reaction, phase == 'lock')/eh, merge(' LOCALIZED', '          ', rec%localized), &
+            merge(' NONLOCAL', '         ', rec%nl_localized)
          if (d%log_residuals) write (output_unit, '(a,*(es9.2))') '      residuals:', &
             nr%residual(0:nr%iterations)
-         if (rec%localized .and. d%stop_at_localization) return
+         ! stop once both tearing criteria have been met
+         if (rec%localized .and. rec%nl_localized .and. d%stop_at_localization) return
          ! grow after easy convergence, shrink after a hard one; and resolve
          ! fast changes of the force (the closing binder's final squeeze, the
          ! first slip over a radius): at most ~10% change per increment
@@ -247,6 +265,72 @@ contains
          have_prev = .true.
       end do
    end subroutine run_phase
+
+   !> FIRST_CROSSING: the station whose indicator crosses zero earliest in
+   !> the increment, by linear interpolation between the two states.
+   !>  g_old, g_new [in]  indicators at the start and end of the increment
+   !>  frac         [out] fraction of the increment at the crossing
+   !>  k            [out] the station (0: none crossed)
+   pure subroutine first_crossing(g_old, g_new, frac, k)
+      real(dp), intent(in) :: g_old(:), g_new(:)
+      real(dp), intent(out) :: frac
+      integer, intent(out) :: k
+      integer :: i
+      real(dp) :: f
+      k = 0
+      frac = 2.0_dp
+      do i = 1, size(g_old)
+         if (g_old(i) > 0.0_dp .and. g_new(i) <= 0.0_dp) then
+            f = g_old(i)/(g_old(i) - g_new(i))
+            if (f < frac) then
+               frac = f
+               k = i
+            end if
+         end if
+      end do
+   end subroutine first_crossing
+
+   !> NONLOCAL_INDICATOR: the localization indicator averaged over a reference
+   !> length ell centred on each Gauss station (clipped at the sheet's ends),
+   !> with the Gauss weights as quadrature.  A neck in a sheet spans a length
+   !> of the order of its thickness, and a shell theory cannot resolve
+   !> anything shorter: requiring the loss of positive definiteness over
+   !> ell ~ h makes the tearing point a property of the converged fields, not
+   !> of where the stations fall.  Sliding window with prefix sums: O(stations).
+   !>  m      [in]  model
+   !>  g      [in]  pointwise indicator (n_gauss, n_el)
+   !>  ell    [in]  averaging length, mm
+   pure function nonlocal_indicator(m, g, ell) result(gbar)
+      type(model_type), intent(in) :: m
+      real(dp), intent(in) :: g(:, :), ell
+      real(dp) :: gbar(size(g))
+      real(dp) :: xs(size(g)), pw(0:size(g)), pg(0:size(g)), wt
+      integer :: e, ig, k, lo, hi, n
+      n = size(g)
+      pw(0) = 0.0_dp
+      pg(0) = 0.0_dp
+      do e = 1, m%n_el
+         do ig = 1, n_gauss
+            k = (e - 1)*n_gauss + ig
+            xs(k) = gauss_position(m, e, ig)
+            wt = gauss_wt(ig)*(m%x(e + 1) - m%x(e))
+            pw(k) = pw(k - 1) + wt
+            pg(k) = pg(k - 1) + wt*g(ig, e)
+         end do
+      end do
+      lo = 1
+      hi = 1
+      do k = 1, n
+         do while (xs(lo) < xs(k) - 0.5_dp*ell)
+            lo = lo + 1
+         end do
+         do while (hi < n)
+            if (xs(hi + 1) > xs(k) + 0.5_dp*ell) exit
+            hi = hi + 1
+         end do
+         gbar(k) = (pg(hi) - pg(lo - 1))/(pw(hi) - pw(lo - 1))
+      end do
+   end function nonlocal_indicator
 
    !> ENERGY_TOTALS: stored and dissipated energies of the converged state per
    !> unit width (N mm/mm): elastic, plastic (the material's sse and spd

@@ -3,7 +3,7 @@
 !> A deck is a text file of Fortran namelist groups, in any order, each
 !> optional:
 !>
-!>   &control   title, output_dir, stop_at_localization, log_residuals
+!>   &control   title, output_dir, stop_at_localization, tearing_length, log_residuals, predictor
 !>   &sheet     thickness, length, n_elements, mesh_beta, left_edge,
 !>              back_tension
 !>   &material  youngs_modulus, poissons_ratio, r_value, hardening,
@@ -67,6 +67,7 @@ module deck
       character(len=512) :: output_dir = ''          ! '' -> 'out/<deck base name>'
       logical :: stop_at_localization = .true.
       logical :: log_residuals = .false.          ! print each increment's Newton residual sequence
+      real(dp) :: tearing_length = 1.0_dp         ! averaging length of the mesh-objective tearing measure, units of h
       logical :: predictor = .true.               ! extrapolate the last increment's motion as first guess
       ! &sheet
       real(dp) :: thickness = default_thickness       ! h, mm
@@ -318,7 +319,9 @@ contains
       character(len=256) :: title
       character(len=512) :: output_dir
       logical :: stop_at_localization, log_residuals, predictor
-      namelist /control/ title, output_dir, stop_at_localization, log_residuals, predictor
+      real(dp) :: tearing_length
+      namelist /control/ title, output_dir, stop_at_localization, tearing_length, log_residuals, &
+         predictor
       character(len=echo_len) :: lines(echo_rows)
 
       title = d%title
@@ -326,6 +329,7 @@ contains
       stop_at_localization = d%stop_at_localization
       log_residuals = d%log_residuals
       predictor = d%predictor
+      tearing_length = d%tearing_length
       select case (action)
       case (act_read_unit)
          read (unit, nml=control, iostat=ios, iomsg=msg)
@@ -342,6 +346,7 @@ contains
       d%stop_at_localization = stop_at_localization
       d%log_residuals = log_residuals
       d%predictor = predictor
+      d%tearing_length = tearing_length
    end subroutine nml_control
 
    !> nml_sheet -- namelist &sheet (arguments as group_io).
@@ -942,6 +947,7 @@ contains
       ! &control
       call check_text_length(errs, at(p, 'control', 'title'), d%title)
       call check_text_length(errs, at(p, 'control', 'output_dir'), d%output_dir)
+      call check_real(errs, at(p, 'control', 'tearing_length'), d%tearing_length, lo=0.0_dp)
 
       ! &sheet
       call check_real(errs, at(p, 'sheet', 'thickness'), d%thickness, lo=0.0_dp, lo_open=.true.)
