@@ -19,14 +19,14 @@ module analysis
    use output, only: output_files, write_row
    implicit none
    private
-   public :: run_record, run_phase, phase_load, run_record_init, energy_totals, nonlocal_indicator
+   public :: run_record, run_phase, phase_load, run_record_init, energy_totals, strain_limit_indicator
 
    !> What the run has found so far (written to summary.txt).
    type :: run_record
       logical :: localized = .false.
       character(len=8) :: loc_phase = ''
       real(dp) :: load_cr = 0.0_dp, s_star = 0.0_dp
-      ! the mesh-objective criterion (indicator averaged over tearing_length)
+      ! the mesh-objective criterion (strain averaged over tearing_length)
       logical :: nl_localized = .false.
       character(len=8) :: nl_phase = ''
       real(dp) :: nl_load_cr = 0.0_dp, nl_s_star = 0.0_dp
@@ -121,7 +121,7 @@ contains
       ! the force doing work on the load parameter: F while locking (starts
       ! at 0 on the flat sheet), N while pulling (the reaction reached so far)
       rec%last_conjugate = merge(0.0_dp, rec%last_reaction, phase == 'lock')
-      nl_old = nonlocal_indicator(m, s%indicator, d%tearing_length*h)
+      nl_old = strain_limit_indicator(m, s%gp(1, :, :), d%tearing_length*h)
       if (phase == 'pull') then
          rec%work_pull_start = rec%work
          call energy_totals(m, s, rec%energy_pull_start)
@@ -209,9 +209,9 @@ contains
                rec%s_star = gauss_position(m, (k_cr - 1)/n_gauss + 1, mod(k_cr - 1, n_gauss) + 1)
             end if
          end if
-         ! ... and the mesh-objective one: the indicator averaged over a
-         ! reference length tearing_length*h around each station
-         nl_new = nonlocal_indicator(m, s%indicator, d%tearing_length*h)
+         ! ... and the mesh-objective one: the mid-surface strain averaged
+         ! over tearing_length*h reaches the plane-strain maximum-load strain
+         nl_new = strain_limit_indicator(m, s%gp(1, :, :), d%tearing_length*h)
          if (.not. rec%nl_localized) then
             call first_crossing(nl_old, nl_new, frac, k_cr)
             if (k_cr > 0) then
@@ -290,23 +290,27 @@ contains
       end do
    end subroutine first_crossing
 
-   !> NONLOCAL_INDICATOR: the localization indicator averaged over a reference
-   !> length ell centred on each Gauss station (clipped at the sheet's ends),
-   !> with the Gauss weights as quadrature.  A neck in a sheet spans a length
-   !> of the order of its thickness, and a shell theory cannot resolve
-   !> anything shorter: requiring the loss of positive definiteness over
-   !> ell ~ h makes the tearing point a property of the converged fields, not
-   !> of where the stations fall.  Sliding window with prefix sums: O(stations).
-   !>  m      [in]  model
-   !>  g      [in]  pointwise indicator (n_gauss, n_el)
+   !> STRAIN_LIMIT_INDICATOR: the mesh-objective tearing measure.  The
+   !> mid-surface log strain ln(lambda) is averaged over a reference length
+   !> ell centred on each Gauss station (clipped at the sheet's ends, Gauss
+   !> weights as quadrature), and the indicator is the margin left to the
+   !> material's plane-strain maximum-load strain (FLD0):
+   !>    g = eps_max - <ln lambda>_ell,   torn when g <= 0.
+   !> A neck in a sheet spans a length of the order of its thickness and the
+   !> shell theory resolves nothing shorter, so the average over ell ~ h is
+   !> a property of the converged strain field, not of where the stations
+   !> fall; in uniform tension it coincides with the paper's criterion.
+   !> Sliding window with prefix sums: O(stations).
+   !>  m      [in]  model (its max_load_strain)
+   !>  eps    [in]  mid-surface strain lambda - 1 at the stations (n_gauss, n_el)
    !>  ell    [in]  averaging length, mm
-   pure function nonlocal_indicator(m, g, ell) result(gbar)
+   pure function strain_limit_indicator(m, eps, ell) result(g)
       type(model_type), intent(in) :: m
-      real(dp), intent(in) :: g(:, :), ell
-      real(dp) :: gbar(size(g))
-      real(dp) :: xs(size(g)), pw(0:size(g)), pg(0:size(g)), wt
+      real(dp), intent(in) :: eps(:, :), ell
+      real(dp) :: g(size(eps))
+      real(dp) :: xs(size(eps)), pw(0:size(eps)), pg(0:size(eps)), wt
       integer :: e, ig, k, lo, hi, n
-      n = size(g)
+      n = size(eps)
       pw(0) = 0.0_dp
       pg(0) = 0.0_dp
       do e = 1, m%n_el
@@ -315,7 +319,7 @@ contains
             xs(k) = gauss_position(m, e, ig)
             wt = gauss_wt(ig)*(m%x(e + 1) - m%x(e))
             pw(k) = pw(k - 1) + wt
-            pg(k) = pg(k - 1) + wt*g(ig, e)
+            pg(k) = pg(k - 1) + wt*log(1.0_dp + eps(ig, e))
          end do
       end do
       lo = 1
@@ -328,9 +332,9 @@ contains
             if (xs(hi + 1) > xs(k) + 0.5_dp*ell) exit
             hi = hi + 1
          end do
-         gbar(k) = (pg(hi) - pg(lo - 1))/(pw(hi) - pw(lo - 1))
+         g(k) = m%max_load_strain - (pg(hi) - pg(lo - 1))/(pw(hi) - pw(lo - 1))
       end do
-   end function nonlocal_indicator
+   end function strain_limit_indicator
 
    !> ENERGY_TOTALS: stored and dissipated energies of the converged state per
    !> unit width (N mm/mm): elastic, plastic (the material's sse and spd

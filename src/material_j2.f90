@@ -31,7 +31,7 @@ module material_j2
    implicit none
    private
 
-   public :: n_statev, n_props_fixed, law_swift, law_voce, law_table
+   public :: n_statev, n_props_fixed, law_swift, law_voce, law_table, max_load_strain
    public :: umat, flow_stress, hill_equivalent, check_props, read_curve_file
 
    !> number of state variables umat needs
@@ -834,4 +834,38 @@ contains
       s = trim(adjustl(buf))
    end function rtoa
 
+   !> MAX_LOAD_STRAIN: the axial log strain at maximum load in plane-strain
+   !> uniaxial tension (width strain held, sigma22 = 0), where the continuum
+   !> tangent falls to the stress, d tau/d eps = tau (DESIGN §7): the sheet's
+   !> forming limit in plane strain (FLD0).  Found by driving this UMAT along
+   !> the path in increments of 1e-4 and interpolating the crossing.
+   !>  props   [in]  material constants
+   !>  eps_max [out] the strain; huge() if not reached by a log strain of 3
+   pure function max_load_strain(props) result(eps_max)
+      real(dp), intent(in) :: props(:)
+      real(dp) :: eps_max
+      real(dp), parameter :: step = 1.0e-4_dp
+      real(dp) :: stress(2), statev(n_statev), ddsdde(2, 2), sse, spd, pnewdt, eps, g, g_old
+      integer :: i
+      stress = 0.0_dp
+      statev = 0.0_dp
+      sse = 0.0_dp
+      spd = 0.0_dp
+      eps = 0.0_dp
+      g_old = 1.0_dp
+      eps_max = huge(1.0_dp)
+      do i = 1, 30000
+         pnewdt = 1.0_dp
+         call umat(stress, statev, ddsdde, sse, spd, [eps, 0.0_dp], [step, 0.0_dp], props, &
+                   size(props), n_statev, pnewdt)
+         if (pnewdt < 1.0_dp) return
+         eps = eps + step
+         g = statev(4) - stress(1)
+         if (g <= 0.0_dp) then
+            eps_max = eps - step*g/(g - g_old)
+            return
+         end if
+         g_old = g
+      end do
+   end function max_load_strain
 end module material_j2

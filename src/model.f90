@@ -6,6 +6,7 @@ module model
    use mesh, only: graded_nodes, dofs_per_node
    use section, only: n_hist, section_init
    use tools, only: tool_type
+   use material_j2, only: max_load_strain
    implicit none
    private
    public :: model_type, state_type, load_type, model_init, state_init, load_init, &
@@ -20,6 +21,7 @@ module model
       real(dp), allocatable :: x(:)          ! reference node positions
       real(dp), allocatable :: z(:), wz(:)   ! Simpson stations and weights
       real(dp), allocatable :: props(:)      ! UMAT constants
+      real(dp) :: max_load_strain = 0.0_dp   ! plane-strain maximum-load log strain of the material
       ! tools and contact (bead /= 'none')
       logical :: has_tools = .false.
       type(tool_type) :: tool(2)             ! 1 upper (fixed), 2 lower (moves by H)
@@ -77,6 +79,7 @@ contains
       call graded_nodes(n_el, 0.5_dp*length, beta, m%x)
       call simpson_rule(npt, h, m%z, m%wz)
       m%props = props
+      m%max_load_strain = max_load_strain(props)
    end subroutine model_init
 
    !> STATE_INIT: undeformed, stress-free state.

@@ -113,7 +113,8 @@ contains
       call write_summary_line(u, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'pull')
       call write_summary_line(u, 'lock_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'lock')
       call write_summary_line(u, 's_star_over_h', rec%s_star/h, rec%localized)
-      ! the mesh-objective tearing measure: indicator averaged over tearing_length
+      ! the mesh-objective tearing measure: mid-surface strain averaged over
+      ! tearing_length reaching the plane-strain maximum-load strain
       write (u, '(a)') 'nonlocal_localization_phase = '// &
          trim(merge(rec%nl_phase, 'none    ', rec%nl_localized))
       call write_summary_line(u, 'delta_cr_nonlocal_over_h', rec%nl_load_cr/h, &
@@ -122,6 +123,7 @@ contains
                               rec%nl_localized .and. rec%nl_phase == 'lock')
       call write_summary_line(u, 's_star_nonlocal_over_h', rec%nl_s_star/h, rec%nl_localized)
       call write_summary_line(u, 'tearing_length_over_h', d%tearing_length, .true.)
+      call write_summary_line(u, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
       call write_summary_line(u, 'lock_force_over_Eh', rec%lock_force/eh, m%has_tools)
       call write_summary_line(u, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
       call write_summary_line(u, 'final_force_over_Eh', rec%last_force/eh, rec%n_pull > 0)
