@@ -17,6 +17,7 @@ module analysis
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular
    use output, only: output_files, write_row
+   use tools, only: tool_level
    implicit none
    private
    public :: run_record, run_phase, phase_load, run_record_init, energy_totals, strain_limit_indicator
@@ -85,7 +86,27 @@ contains
       else
          ld%tool_shift = p
       end if
+      ! the edges sit on the binder: at y = 0 unless the lower tool's face
+      ! under an edge has risen above it (a lock step), never above the upper
+      if (m%has_tools) then
+         ld%u_fixed(3) = edge_height(m, m%x(1), ld%tool_shift)
+         ld%u_fixed(nr + 3) = edge_height(m, m%x(m%n_nodes), ld%tool_shift)
+      end if
    end subroutine phase_load
+
+   !> EDGE_HEIGHT: where a sheet edge is held: on the lower tool's face if it
+   !> has risen above y = 0 (the level of the flat sheet), else at y = 0,
+   !> and never above the upper tool's face (DESIGN §1: v, w, w' held; for the
+   !> paper's beads both faces meet at y = 0 at full lock, so w = 0).
+   !>  m      [in]  model with tools
+   !>  x      [in]  reference abscissa of the edge
+   !>  shift  [in]  the lower tool's rise H
+   pure function edge_height(m, x, shift) result(w)
+      type(model_type), intent(in) :: m
+      real(dp), intent(in) :: x, shift
+      real(dp) :: w
+      w = min(max(tool_level(m%tool(2), x) + shift, 0.0_dp), tool_level(m%tool(1), x))
+   end function edge_height
 
    !> RUN_PHASE: advance the load parameter from p0 to p1 with adaptive
    !> increments; commit, check localization and write a row per increment.

@@ -90,7 +90,7 @@ module tools
    private
    public :: seg_line, seg_arc, segment_type, tool_type
    public :: line_segment, arc_segment, tool_init
-   public :: tool_gap, tool_sample
+   public :: tool_gap, tool_sample, tool_level
    public :: build_rectangular_bead, bead_a_over_h, bead_b_over_h
    public :: read_profile, write_profile
 
@@ -572,6 +572,50 @@ contains
    end subroutine tool_sample
 
    !> PIECE_POINT: the point at fraction u (0..1 of the length) of a piece.
+   !> TOOL_LEVEL: height of the tool surface (shift 0) above abscissa x, from
+   !> the first piece whose x range contains x, or the end pieces' tangent
+   !> lines beyond the chain.  Meant for the binder faces at the sheet's edges.
+   !>  tool  [in]  the tool
+   !>  x     [in]  abscissa, mm
+   !>  y     (result) surface height at x, mm
+   pure function tool_level(tool, x) result(y)
+      type(tool_type), intent(in) :: tool
+      real(dp), intent(in) :: x
+      real(dp) :: y, lo, hi, mid, p(2)
+      integer :: i, it
+      associate (first => tool%seg(1), last => tool%seg(tool%nseg))
+         if (x <= first%p1(1)) then
+            y = first%p1(2) + (x - first%p1(1))*first%t1(2)/first%t1(1)
+            return
+         end if
+         if (x >= last%p2(1)) then
+            y = last%p2(2) + (x - last%p2(1))*last%t2(2)/last%t2(1)
+            return
+         end if
+      end associate
+      y = 0.0_dp
+      do i = 1, tool%nseg
+         associate (sg => tool%seg(i))
+            if ((sg%p1(1) - x)*(sg%p2(1) - x) > 0.0_dp) cycle
+            ! bisection on the piece parameter for x(u) = x
+            lo = 0.0_dp
+            hi = 1.0_dp
+            do it = 1, 60
+               mid = 0.5_dp*(lo + hi)
+               p = piece_point(sg, mid)
+               if ((p(1) - x)*(sg%p1(1) - x) > 0.0_dp) then
+                  lo = mid
+               else
+                  hi = mid
+               end if
+            end do
+            p = piece_point(sg, 0.5_dp*(lo + hi))
+            y = p(2)
+            return
+         end associate
+      end do
+   end function tool_level
+
    pure function piece_point(seg, u) result(pt)
       type(segment_type), intent(in) :: seg
       real(dp), intent(in) :: u
