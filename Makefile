@@ -1,4 +1,4 @@
-# drawbead -- build and test (GNU make >= 4.0; see docs/BUILD.md)
+# drawbead -- build and test (GNU make >= 4.0; see README.md)
 #
 #   make                 build bin/drawbead (release flags) in build/
 #   make -j2 test        build, run the .pf suites and the tests/*.sh scripts

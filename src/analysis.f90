@@ -142,7 +142,7 @@ contains
       ! the force doing work on the load parameter: F while locking (starts
       ! at 0 on the flat sheet), N while pulling (the reaction reached so far)
       rec%last_conjugate = merge(0.0_dp, rec%last_reaction, phase == 'lock')
-      nl_old = strain_limit_indicator(m, s%gp(1, :, :), d%tearing_length*h)
+      nl_old = strain_limit_indicator(m, s%gpn(1, :, :), d%tearing_length*h)
       if (phase == 'pull') then
          rec%work_pull_start = rec%work
          call energy_totals(m, s, rec%energy_pull_start)
@@ -199,6 +199,9 @@ contains
                             1.0e-5_dp*eh)
          if (force_change > 0.5_dp .and. abs(rec%last_conjugate) > 1.0e-4_dp*eh .and. &
              dt > 4.0_dp*d%min_increment) then
+            rec%cutbacks = rec%cutbacks + 1
+            write (output_unit, '(a5,1x,a,es10.3,a,f6.2)') phase, 'cutback  d/h=', dt/h, &
+               '  force jump', force_change
             dt = 0.25_dp*dt
             have_prev = .false.
             s%u1 = s%u
@@ -232,7 +235,7 @@ contains
          end if
          ! ... and the mesh-objective one: the mid-surface strain averaged
          ! over tearing_length*h reaches the plane-strain maximum-load strain
-         nl_new = strain_limit_indicator(m, s%gp(1, :, :), d%tearing_length*h)
+         nl_new = strain_limit_indicator(m, s%gpn(1, :, :), d%tearing_length*h)
          if (.not. rec%nl_localized) then
             call first_crossing(nl_old, nl_new, frac, k_cr)
             if (k_cr > 0) then

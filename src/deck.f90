@@ -104,7 +104,7 @@ module deck
       real(dp) :: friction_eps = 0.0333_dp            ! eps of (4.3), units of h
       real(dp) :: contact_smoothing = 1.0e-3_dp       ! penalty onset smoothed over this penetration, units of h
       ! &loading
-      real(dp) :: lock_depth = unset                  ! h1 + r1 with a bead, else 0
+      real(dp) :: lock_depth = unset                  ! h1 + r1 with bead = 'rectangular', 0 with 'none', required with 'profile'
       real(dp) :: pull_distance = unset               ! 10 h
       real(dp) :: initial_increment = unset           ! 0.05 h
       real(dp) :: min_increment = unset               ! 1e-6 h
@@ -877,7 +877,8 @@ contains
    !> bead A r1 = r2 = 4.66 h, b1 = 4.16 h, b2 = 8.83 h, h1 = 1.56 h,
    !> h2 = 5.66 h, pull_distance 10 h, min_increment 1e-6 h, max_increment
    !> 0.1 h, initial_increment 0.05 h (kept within the min/max increments),
-   !> lock_depth h1 + r1 (full lock) with a bead and 0 without.
+   !> lock_depth h1 + r1 (full lock) with a rectangular bead, 0 without one;
+   !> with a profile bead it must be given.
    !>
    !> d  [in,out] the deck as read.
    subroutine resolve_defaults(d)
@@ -906,7 +907,8 @@ contains
          if (is_positive(d%max_increment)) d%initial_increment = &
             min(d%initial_increment, d%max_increment)
       end if
-      if (is_unset(d%lock_depth)) then
+      ! a profile's full-lock depth is not known here: it must be given
+      if (is_unset(d%lock_depth) .and. d%bead /= 'profile') then
          d%lock_depth = 0.0_dp
          if (d%bead /= 'none') then
             if (is_positive(d%h1)) d%lock_depth = d%lock_depth + d%h1
@@ -1036,7 +1038,12 @@ contains
       call check_real(errs, at(p, 'tools', 'contact_smoothing'), d%contact_smoothing, lo=0.0_dp)
 
       ! &loading
-      call check_real(errs, at(p, 'loading', 'lock_depth'), d%lock_depth, lo=0.0_dp)
+      if (is_unset(d%lock_depth)) then
+         call fail(errs, at(p, 'loading', 'lock_depth'), 'must be given with bead = ''profile'''// &
+                   ' (the full-lock depth of the profiles, mm)')
+      else
+         call check_real(errs, at(p, 'loading', 'lock_depth'), d%lock_depth, lo=0.0_dp)
+      end if
       if (d%bead == 'rectangular' .and. ieee_is_finite(d%lock_depth) .and. &
           is_positive(d%r1) .and. ieee_is_finite(d%h1)) then
          full = d%h1 + d%r1

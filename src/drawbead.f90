@@ -72,7 +72,11 @@ program drawbead
       m%has_tools = .true.
    case ('profile')
       call read_profile(trim(d%upper_profile), m%tool(1), errmsg)
+      if (len_trim(errmsg) == 0 .and. m%tool(1)%side /= 1) &
+         errmsg = 'variable upper_profile: '//trim(d%upper_profile)//' is a lower tool (side lower)'
       if (len_trim(errmsg) == 0) call read_profile(trim(d%lower_profile), m%tool(2), errmsg)
+      if (len_trim(errmsg) == 0 .and. m%tool(2)%side /= -1) &
+         errmsg = 'variable lower_profile: '//trim(d%lower_profile)//' is an upper tool (side upper)'
       if (len_trim(errmsg) > 0) then
          write (error_unit, '(a)') '*ERROR* deck '''//trim(d%deck_file)//''', group &tools: '// &
             trim(errmsg)

@@ -48,6 +48,7 @@ module model
       real(dp), allocatable :: hn(:, :, :, :), h1(:, :, :, :) ! (n_hist, npt, n_gauss, n_el)
       real(dp), allocatable :: cn(:, :, :, :), c1(:, :, :, :) ! (n_chist, n_gauss, n_el, 2)
       real(dp), allocatable :: gp(:, :, :)               ! (eps, rho, N, M) at Gauss points, trial
+      real(dp), allocatable :: gpn(:, :, :)              ! the same, converged
       real(dp), allocatable :: indicator(:, :)           ! localization indicator, converged
       real(dp) :: shift = 0.0_dp                         ! converged lower-tool rise H
       real(dp) :: tool_force(2, 2) = 0.0_dp              ! (x, y) force of tool 1, 2 on the sheet, trial
@@ -90,7 +91,7 @@ contains
       allocate (s%u(m%n_dof), s%u1(m%n_dof))
       allocate (s%hn(n_hist, m%npt, n_gauss, m%n_el))
       allocate (s%cn(n_chist, n_gauss, m%n_el, 2))
-      allocate (s%gp(4, n_gauss, m%n_el), s%indicator(n_gauss, m%n_el))
+      allocate (s%gp(4, n_gauss, m%n_el), s%gpn(4, n_gauss, m%n_el), s%indicator(n_gauss, m%n_el))
       s%u = 0.0_dp
       s%u1 = 0.0_dp
       do e = 1, m%n_el
@@ -108,6 +109,7 @@ contains
       end do
       s%c1 = s%cn
       s%gp = 0.0_dp
+      s%gpn = s%gp
       s%indicator = 1.0_dp
    end subroutine state_init
 

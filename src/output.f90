@@ -125,14 +125,14 @@ contains
             call hermite_shape(gauss_xi(ig), le, nv, dn, d2n)
             v = dot_product(nv, s%u(dofs(v_dofs)))
             w = dot_product(nv, s%u(dofs(w_dofs)))
-            eps = s%gp(1, ig, e)
+            eps = s%gpn(1, ig, e)
             top = log(s%hn(ih_stretch, m%npt, ig, e))
             bot = log(s%hn(ih_stretch, 1, ig, e))
             e22 = s%hn(ih_statev + 1, mid, ig, e)
             epmax = maxval(s%hn(ih_statev, :, ig, e))
             write (unit, fmt_row) gauss_position(m, e, ig)/h, (gauss_position(m, e, ig) + v)/h, &
-               w/h, eps, log(1.0_dp + eps), top, bot, e22, epmax, s%gp(2, ig, e)*h, &
-               s%gp(3, ig, e)/(m%youngs*h), s%gp(4, ig, e)/(m%youngs*h*h), s%indicator(ig, e)
+               w/h, eps, log(1.0_dp + eps), top, bot, e22, epmax, s%gpn(2, ig, e)*h, &
+               s%gpn(3, ig, e)/(m%youngs*h), s%gpn(4, ig, e)/(m%youngs*h*h), s%indicator(ig, e)
          end do
       end do
       close (unit)

@@ -276,6 +276,7 @@ contains
          end do
       end do
       s%u = s%u1
+      s%gpn = s%gp
       s%hn = s%h1
       s%cn = s%c1
       s%shift = shift
