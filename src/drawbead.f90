@@ -11,7 +11,7 @@ program drawbead
    use model, only: model_type, state_type, model_init, state_init
    use tools, only: build_rectangular_bead, read_profile
    use analysis, only: run_record, run_record_init, run_phase
-   use output, only: output_files, open_outputs, close_outputs, write_strains
+   use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools
    use summary, only: write_summary
    implicit none
    type(deck_type) :: d
@@ -102,10 +102,12 @@ program drawbead
       call run_phase(m, d, s, 'lock', 0.0_dp, d%lock_depth, out, rec)
    end if
    call write_strains(trim(d%output_dir)//'/strain_lock.dat', m, s, 'after locking')
+   call write_tools(trim(d%output_dir)//'/tools_lock.dat', m, s%shift, 'at the end of locking')
    if (rec%status == 0 .and. .not. (rec%localized .and. d%stop_at_localization)) then
       call run_phase(m, d, s, 'pull', 0.0_dp, d%pull_distance, out, rec)
    end if
    call write_strains(trim(d%output_dir)//'/strain_pull.dat', m, s, 'after pulling')
+   call write_tools(trim(d%output_dir)//'/tools_pull.dat', m, s%shift, 'at the end of pulling')
    call close_outputs(out)
    call cpu_time(t_end)
    call write_summary(trim(d%output_dir)//'/summary.txt', m, s, d, rec, t_end - t_start)

@@ -10,10 +10,11 @@ module output
    use element, only: v_dofs, w_dofs
    use section, only: ih_stretch, ih_statev
    use model, only: model_type, state_type, gauss_position
+   use tools, only: tool_sample
    implicit none
    private
    public :: output_files, open_outputs, write_row, write_strains, write_summary_line, &
-             close_outputs, make_directory, fmt_row
+             close_outputs, make_directory, fmt_row, write_tools
 
    character(len=*), parameter :: fmt_row = '(*(1x,es24.16e3))'
 
@@ -137,6 +138,37 @@ contains
       end do
       close (unit)
    end subroutine write_strains
+
+   !> WRITE_TOOLS: the tools' centreline surfaces at the lower tool's rise H,
+   !> sampled at 400 points each, upper tool first, a blank line between
+   !> (gnuplot: plot 'tools_lock.dat' index 0 / index 1, or both as one).
+   !>  path   [in] file to write
+   !>  m      [in] model (tools)
+   !>  shift  [in] the lower tool's rise H, mm
+   !>  what   [in] text for the header
+   subroutine write_tools(path, m, shift, what)
+      character(len=*), intent(in) :: path, what
+      type(model_type), intent(in) :: m
+      real(dp), intent(in) :: shift
+      integer, parameter :: n = 400
+      real(dp) :: xy(2, n)
+      integer :: unit, it, k, stat
+      if (.not. m%has_tools) return
+      open (newunit=unit, file=path, status='replace', action='write', iostat=stat)
+      if (stat /= 0) return
+      write (unit, '(a)') '# drawbead tool surfaces (centreline surfaces: the physical surfaces'// &
+         ' offset by h/2 toward the sheet) '//trim(what), &
+         '# 1:x/h 2:y/h ; block 0 = upper (female) tool, block 1 = lower (male) tool'
+      do it = 1, 2
+         call tool_sample(m%tool(it), n, xy)
+         if (it == 2) xy(2, :) = xy(2, :) + shift
+         if (it == 2) write (unit, '(a)') '', ''
+         do k = 1, n
+            write (unit, fmt_row) xy(:, k)/m%thickness
+         end do
+      end do
+      close (unit)
+   end subroutine write_tools
 
    !> CLOSE_OUTPUTS: close the files kept open.
    subroutine close_outputs(out)
