@@ -16,7 +16,7 @@ module analysis
    use model, only: model_type, state_type, load_type, load_init, gauss_position
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular
-   use output, only: output_files, write_row
+   use output, only: output_files, write_row, write_strains
    use tools, only: tool_level
    implicit none
    private
@@ -231,6 +231,8 @@ contains
                rec%loc_phase = phase
                rec%load_cr = p - dt + frac*dt
                rec%s_star = gauss_position(m, (k_cr - 1)/n_gauss + 1, mod(k_cr - 1, n_gauss) + 1)
+               call write_strains(out%dir//'/strain_localization.dat', m, s, &
+                                  'at the increment where the paper''s criterion was met')
             end if
          end if
          ! ... and the mesh-objective one: the mid-surface strain averaged
