@@ -12,7 +12,9 @@
 #             the sheet is drawn
 #   lock|pull the state: end of locking or end of pulling (end of the run)
 #   OUT.png   the picture; .png (pngcairo), .pdf (pdfcairo) or .svg
-#   --title   the plot title (default: the run's title and the state)
+#   --title   the plot title (default: the run's title and the state); a
+#             '%s' in it is replaced by the state ('end of locking,
+#             H = 6.22h' or 'end of pulling, Delta = 2.05h')
 #   --margin  the x range is the sheet's extent plus M sheet thicknesses on
 #             each side (default 3)
 #   --no-marks  do not mark the tearing point s* of summary.txt
@@ -87,6 +89,10 @@ if (phase eq 'lock') {
 if (ptitle eq '__default__') {
     run = readable(fsum) ? system("sed -n '1s/^# drawbead summary: *//p' '" . fsum . "'") : ''
     ptitle = (run eq '') ? state : run . ': ' . state
+} else {
+    if (strstrt(ptitle, '%s') > 0) {
+        ptitle = sprintf(ptitle, state)
+    }
 }
 
 # x range: the sheet and a margin; y range: what lies in it
@@ -118,7 +124,7 @@ set offsets 0, 0, 1, 1
 set grid lc rgb '#e4e4e4' lw 1
 set mxtics 2
 set mytics 2
-set key below nobox samplen 3 spacing 1.2 width 2
+set key below horizontal maxrows 1 nobox samplen 3 width 1
 
 # the tearing point, if it was reached in this state
 tear = 0
@@ -141,7 +147,7 @@ if (has_tools) {
              ftools index 1 using 1:2 with lines lw 1.5 lc rgb '#8a6d3b' title 'lower (male) tool', \
              fsheet using 2:3 with lines lw 3 lc rgb '#000000' title 'sheet centreline', \
              fsheet using 2:(near($1) ? $3 : NaN) with points pt 2 ps 3 lw 3 lc rgb '#D55E00' \
-                 title sprintf('tearing point s* = %.1fh', sstar)
+                 title sprintf('tearing point (s* = %.1fh)', sstar)
     } else {
         plot ftools index 0 using 1:2 with filledcurves x2 fc rgb upper_fill fs solid 1.0 notitle, \
              ftools index 1 using 1:2 with filledcurves x1 fc rgb lower_fill fs solid 1.0 notitle, \

@@ -279,7 +279,7 @@ contains
          ! grow after easy convergence, shrink after a hard one; and resolve
          ! fast changes of the force (the closing binder's final squeeze, the
          ! first slip over a radius): at most ~10% change per increment
-         if (force_change > 0.1_dp) then
+         if (force_change > 0.1_dp .and. abs(rec%last_conjugate) > 1.0e-4_dp*eh) then
             dt = max(max(0.25_dp, 0.1_dp/force_change)*dt, d%min_increment)
          else if (nr%iterations <= 3) then
             dt = min(2.0_dp*dt, d%max_increment)

@@ -122,7 +122,8 @@ contains
    end subroutine add_end_moment
 
    !> NEWTON_SOLVE: equilibrium at the loads ld, starting from the trial s%u1
-   !> (the caller may put a predictor there); prescribed dofs are set first.
+   !> (the caller may put a predictor there); prescribed dofs reach their
+   !> values through the first linear solve.
    !> Converged when the scaled residual is below tol and the last scaled
    !> correction below sqrt(tol): residual ||r_free|| / force scale,
    !> correction max |du|/h over displacement dofs and max |du| over slopes.
@@ -145,7 +146,6 @@ contains
       integer :: it, i, info, backtrack
       real(dp) :: g0, g1, alpha
       integer :: n_contact_prev
-      where (ld%fixed) s%u1 = ld%u_fixed
       cnorm = huge(1.0_dp)
       do it = 0, min(max_iter, max_newton_history)
          n_contact_prev = s%n_contact
@@ -208,7 +208,11 @@ contains
                return
             end if
          end if
-         du = -merge(0.0_dp, r, ld%fixed)
+         ! prescribed dofs: their equation is du_i = u_fixed_i - u1_i, so the
+         ! first solve carries the prescribed increment into the whole sheet
+         ! with the tangent of the converged state (the jump is not forced
+         ! into the edge element before the first solve)
+         du = merge(ld%u_fixed - s%u1, -r, ld%fixed)
          do i = 1, size(du)
             if (ld%fixed(i)) call band_fix_dof(kb, i)
          end do

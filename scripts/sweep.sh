@@ -1,0 +1,285 @@
+#!/usr/bin/env bash
+# sweep.sh -- a design sweep: one run per combination of deck values.
+#
+# Usage: scripts/sweep.sh [-j N] [--slurm] [-o OUTDIR] [--bin PATH]
+#                         BASE.nml VAR=V1,V2,... [VAR=V1,V2,... ...]
+#        scripts/sweep.sh --collect OUTDIR
+#
+# Writes one deck per combination of the values (the cartesian product;
+# the first variable varies slowest) into OUTDIR/decks/case_NNNN.nml, made
+# from BASE.nml by overriding the named namelist variables (any variable
+# of the deck reference: the group that holds it in the base deck is used,
+# or the variable is added to its group; text values need no quotes), then
+# runs them, N at a time, each into OUTDIR/runs/case_NNNN/ (the program's
+# output files, run.log with its stdout and stderr, exit_status), with a
+# progress line on stderr ("done 37/120, 2 failed, eta 0:41"), and finally
+# writes and prints OUTDIR/table.txt: one row per case with the swept
+# values, steady_force_over_Eh, peak_force_over_Eh, final_lift_over_Eh,
+# delta_cr_over_h, max_thinning (from summary.txt) and the status:
+# completed, localized, no_convergence, bad_input (the deck was rejected),
+# or not_run; every failed case is listed under the table with the
+# program's error message. OUTDIR/decks.txt lists the decks (line k+1 is
+# case k) and OUTDIR/cases.tsv the swept values.
+#
+# Example (a sweep over friction and lock depth of the free-edge bead A):
+#   scripts/sweep.sh -o out/sweep_a input/fig9c_beadA_steel_free.nml \
+#       friction=0.05,0.1,0.15 lock_depth=3,4,4.7
+#
+# Options:
+#   -j N          runs at a time (default: nproc)
+#   -o DIR        the sweep folder (default: out/sweep_<base deck name>)
+#   --bin PATH    the program (default: $DRAWBEAD if set, else bin/drawbead
+#                 of the repository, built with make -s)
+#   --no-build    do not run make
+#   --slurm       write the decks and OUTDIR/sweep.slurm, a Slurm job-array
+#                 script (one array task per deck, task k runs line k+1 of
+#                 OUTDIR/decks.txt), and run nothing: submit it with
+#                 "sbatch OUTDIR/sweep.slurm", then build the table with
+#                 "scripts/sweep.sh --collect OUTDIR". Edit its #SBATCH
+#                 lines (time, partition, account) as your cluster needs.
+#   --collect DIR only build DIR/table.txt from the runs present (exit
+#                 status 1 if a case failed or has not run yet)
+#   -h, --help    this text
+#
+# The runs are started from the current directory, so that file names in
+# the deck (profiles, curve files) mean what they mean for the base deck;
+# the Slurm script changes to this directory too.
+#
+# Exit status: 0 when every run exited 0; 1 when a run failed (its row is
+# in the table); 2 on a usage, deck or build error.
+set -u -o pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd) || exit 2
+tool=$root/scripts/sweep_tool.py
+
+usage() {
+    sed -n '2,/^set -u/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'
+}
+
+die() {
+    echo "sweep.sh: $*" >&2
+    exit 2
+}
+
+jobs_max=$(nproc 2>/dev/null || echo 2)
+outdir=''
+bin=${DRAWBEAD:-}
+do_build=1
+slurm=0
+collect=''
+args=()
+
+while (($# > 0)); do
+    case $1 in
+        -j)
+            (($# >= 2)) || die "-j needs a number"
+            jobs_max=$2
+            shift 2
+            ;;
+        -j*)
+            jobs_max=${1#-j}
+            shift
+            ;;
+        -o | --output)
+            (($# >= 2)) || die "$1 needs a directory"
+            outdir=$2
+            shift 2
+            ;;
+        --output=*)
+            outdir=${1#*=}
+            shift
+            ;;
+        --bin)
+            (($# >= 2)) || die "--bin needs a path"
+            bin=$2
+            shift 2
+            ;;
+        --bin=*)
+            bin=${1#*=}
+            shift
+            ;;
+        --no-build)
+            do_build=0
+            shift
+            ;;
+        --slurm)
+            slurm=1
+            shift
+            ;;
+        --collect)
+            (($# >= 2)) || die "--collect needs the sweep folder"
+            collect=$2
+            shift 2
+            ;;
+        --collect=*)
+            collect=${1#*=}
+            shift
+            ;;
+        -h | --help)
+            usage
+            exit 0
+            ;;
+        -*)
+            die "unknown option '$1' (see --help)"
+            ;;
+        *)
+            args+=("$1")
+            shift
+            ;;
+    esac
+done
+
+if [[ -n $collect ]]; then
+    ((${#args[@]} == 0)) || die "--collect takes only the sweep folder"
+    python3 "$tool" collect "$collect"
+    exit $?
+fi
+
+((${#args[@]} >= 2)) || die "usage: sweep.sh [-j N] [--slurm] [-o OUTDIR] BASE.nml VAR=V1,V2,... (see --help)"
+[[ $jobs_max =~ ^[1-9][0-9]*$ ]] || die "-j needs a positive number, not '$jobs_max'"
+base=${args[0]}
+[[ -r $base ]] || die "cannot read the base deck '$base'"
+[[ -n $outdir ]] || outdir=$root/out/sweep_$(basename "$base" .nml)
+
+# ---------------------------------------------------------------------------
+# The program
+# ---------------------------------------------------------------------------
+if [[ -z $bin ]]; then
+    bin=$root/bin/drawbead
+    if ((do_build)); then
+        make -s -C "$root" >&2 || die "the build failed"
+    fi
+fi
+[[ -x $bin ]] || die "no executable program '$bin' (build it with make)"
+[[ $bin == /* ]] || bin=$PWD/$bin
+
+# ---------------------------------------------------------------------------
+# The decks
+# ---------------------------------------------------------------------------
+mkdir -p "$outdir" || die "cannot create '$outdir'"
+outdir=$(cd "$outdir" && pwd) || die "cannot enter '$outdir'"
+ndecks=$(python3 "$tool" decks "$outdir" "${args[@]}") || exit 2
+mapfile -t decks <"$outdir/decks.txt"
+((${#decks[@]} == ndecks && ndecks > 0)) || die "the deck list $outdir/decks.txt is inconsistent"
+echo "sweep.sh: $ndecks decks in $outdir/decks/" >&2
+
+# ---------------------------------------------------------------------------
+# Slurm: write the job-array script and stop
+# ---------------------------------------------------------------------------
+if ((slurm)); then
+    mkdir -p "$outdir/slurm" || die "cannot create '$outdir/slurm'"
+    script=$outdir/sweep.slurm
+    workdir=$PWD
+    {
+        echo '#!/bin/bash'
+        echo "# drawbead sweep of $base: $ndecks decks, one array task each"
+        echo "# (written by scripts/sweep.sh; task k runs line k+1 of $outdir/decks.txt)."
+        echo "# Submit:   sbatch $script"
+        echo "# Collect:  $root/scripts/sweep.sh --collect $outdir"
+        echo "#SBATCH --job-name=drawbead-sweep"
+        echo "#SBATCH --array=0-$((ndecks - 1))"
+        echo "#SBATCH --ntasks=1"
+        echo "#SBATCH --cpus-per-task=1"
+        echo "#SBATCH --time=00:30:00"
+        echo "#SBATCH --output=$outdir/slurm/%A_%a.out"
+        cat <<EOF
+set -u
+bin='$bin'
+outdir='$outdir'
+cd '$workdir' || exit 1
+task=\${SLURM_ARRAY_TASK_ID:?run this script with sbatch, or set SLURM_ARRAY_TASK_ID}
+deck=\$(sed -n "\$((task + 1))p" "\$outdir/decks.txt")
+if [[ -z \$deck ]]; then
+    echo "sweep.slurm: no deck for task \$task in \$outdir/decks.txt" >&2
+    exit 1
+fi
+dir=\$outdir/runs/\$(basename "\$deck" .nml)
+mkdir -p "\$dir" || exit 1
+rm -f "\$dir"/lock.dat "\$dir"/pull.dat "\$dir"/strain_lock.dat "\$dir"/strain_pull.dat \\
+    "\$dir"/tools_lock.dat "\$dir"/tools_pull.dat "\$dir"/summary.txt "\$dir"/exit_status
+"\$bin" "\$deck" --output "\$dir" >"\$dir/run.log" 2>&1
+rc=\$?
+echo "\$rc" >"\$dir/exit_status"
+exit "\$rc"
+EOF
+    } >"$script" || die "cannot write '$script'"
+    chmod +x "$script"
+    echo "sweep.sh: wrote $script (array 0-$((ndecks - 1)))" >&2
+    echo "sweep.sh: submit with:  sbatch $script" >&2
+    echo "sweep.sh: then collect: $root/scripts/sweep.sh --collect $outdir" >&2
+    exit 0
+fi
+
+# ---------------------------------------------------------------------------
+# Local runs, jobs_max at a time, with a progress line
+# ---------------------------------------------------------------------------
+run_one() {
+    local deck=$1 dir=$2 rc
+    mkdir -p "$dir" || return 1
+    rm -f "$dir"/lock.dat "$dir"/pull.dat "$dir"/strain_lock.dat "$dir"/strain_pull.dat \
+        "$dir"/tools_lock.dat "$dir"/tools_pull.dat "$dir"/summary.txt "$dir"/exit_status
+    "$bin" "$deck" --output "$dir" >"$dir/run.log" 2>&1
+    rc=$?
+    echo "$rc" >"$dir/exit_status"
+    return "$rc"
+}
+
+# hms SECONDS: h:mm:ss or m:ss
+hms() {
+    local s=$1
+    if ((s >= 3600)); then
+        printf '%d:%02d:%02d' $((s / 3600)) $((s % 3600 / 60)) $((s % 60))
+    else
+        printf '%d:%02d' $((s / 60)) $((s % 60))
+    fi
+}
+
+tty=0
+[[ -t 2 ]] && tty=1
+progress() {
+    local eta='?'
+    if ((finished > 0)); then
+        eta=$(hms $(((SECONDS - t0) * (total - finished) / finished)))
+    fi
+    if ((tty)); then
+        printf '\rdone %d/%d, %d failed, eta %s   ' "$finished" "$total" "$failed" "$eta" >&2
+        ((finished < total)) || echo >&2
+    else
+        printf 'done %d/%d, %d failed, eta %s\n' "$finished" "$total" "$failed" "$eta" >&2
+    fi
+}
+
+total=$ndecks
+t0=$SECONDS
+declare -A pid_index=()
+next=0
+finished=0
+failed=0
+while ((finished < total)); do
+    while ((${#pid_index[@]} < jobs_max && next < total)); do
+        deck=${decks[next]}
+        run_one "$deck" "$outdir/runs/$(basename "$deck" .nml)" &
+        pid_index[$!]=$next
+        next=$((next + 1))
+    done
+    running=" $(jobs -rp | tr '\n' ' ') "
+    changed=0
+    for pid in "${!pid_index[@]}"; do
+        [[ $running == *" $pid "* ]] && continue
+        wait "$pid"
+        rc=$?
+        unset "pid_index[$pid]"
+        finished=$((finished + 1))
+        ((rc == 0)) || failed=$((failed + 1))
+        changed=1
+    done
+    ((changed)) && progress
+    ((finished < total)) && sleep 0.1
+done
+
+python3 "$tool" collect "$outdir"
+collect_status=$?
+((collect_status <= 1)) || exit 2
+echo "sweep.sh: table in $outdir/table.txt" >&2
+((failed == 0 && collect_status == 0)) || exit 1
+exit 0

@@ -1,0 +1,315 @@
+#!/usr/bin/env bash
+# scripts.sh -- tests of the batch scripts: scripts/run_paper.sh (with the
+# gnuplot scripts scripts/plot_*.gp), scripts/sweep.sh (local and --slurm)
+# and scripts/bead_curves.sh.
+#
+# Usage: tests/scripts.sh [binary]   (default: $DRAWBEAD, else bin/drawbead)
+#
+# Runs from the repository root (the parent of this script's directory) on
+# small decks written to a temporary directory (about 10 s in all):
+#   a) run_paper.sh on reduced copies of fig6 (bead B, 40 elements, pulled
+#      1h) and fig7c (40 elements, lock only): exit 0, a run.log and an
+#      exit_status per deck, the table with both rows, and (if gnuplot is
+#      installed) fig6.png, fig7.png, fig8.png and the bead B shapes as
+#      PNG files
+#   b) run_paper.sh with a deck the program rejects: non-zero exit, the
+#      row says bad_input
+#   c) sweep.sh on a 2x2 grid of a 10-element strip: four decks holding
+#      the right values (also in the program's resolved input), a
+#      four-row table; a sweep with friction=-1 lists that case as
+#      bad_input with the program's message, and exits 1
+#   d) sweep.sh --slurm: the array range matches the deck count, the
+#      script passes bash -n, one task run by hand gives that deck's
+#      summary, and --collect builds the table (not_run for the others)
+#   e) bead_curves.sh on a lock_depth sweep of a small bead A deck: both
+#      curves with N/mm headers and the LS-DYNA keyword file
+#   f) shellcheck (if installed) finds nothing in the batch scripts
+# Prints one line per check; exit status 0 if all pass, 1 if any fails,
+# 2 if the test cannot run.
+set -u
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
+
+prog=${1:-${DRAWBEAD:-bin/drawbead}}
+if [[ ! -x $prog ]]; then
+    echo "scripts.sh: no executable '$prog' (build it first)" >&2
+    exit 2
+fi
+[[ $prog == /* ]] || prog=$PWD/$prog
+
+tmp=$(mktemp -d) || exit 2
+trap 'rm -rf "$tmp"' EXIT
+
+failures=0
+checks=0
+check() {
+    # check DESCRIPTION COMMAND...: run COMMAND, report ok/FAIL
+    local what=$1
+    shift
+    checks=$((checks + 1))
+    if "$@"; then
+        echo "ok   $what"
+    else
+        echo "FAIL $what"
+        failures=$((failures + 1))
+    fi
+}
+
+# is_png FILE: FILE exists and starts with the PNG signature
+is_png() {
+    [[ -s $1 ]] && [[ $(head -c 8 "$1" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]]
+}
+
+# data_rows FILE: the number of lines not starting with '#'
+data_rows() {
+    grep -cv '^#' "$1" 2>/dev/null
+}
+
+# column1_is FILE "V1 V2 ...": the data rows' first column, as written
+column1_is() {
+    [[ $(awk '!/^#/ { printf "%s%s", sep, $1; sep = " " }' "$1") == "$2" ]]
+}
+
+# column2_increases FILE: the data rows' second column strictly increases
+column2_increases() {
+    awk '!/^#/ { if (n++ > 0 && $2 <= last) bad = 1; last = $2 } END { exit bad }' "$1"
+}
+
+have_gnuplot=0
+if command -v gnuplot >/dev/null 2>&1; then
+    have_gnuplot=1
+fi
+
+# ---------------------------------------------------------------------------
+# The small decks
+# ---------------------------------------------------------------------------
+mkdir -p "$tmp/paper" "$tmp/bad" || exit 2
+beadb_tools="   bead = 'rectangular'
+   r1 = 3.55092, r2 = 3.55092, b1 = 9.906, b2 = 13.95984
+   h1 = 0.0, h2 = 4.31292"
+cat >"$tmp/paper/fig6_beadB_steel.nml" <<EOF
+&control
+   title = 'test: bead B, steel, clamped, 40 elements, pulled 1h'
+/
+&sheet
+   thickness = 0.762
+   length = 45.72
+   n_elements = 40
+/
+&tools
+$beadb_tools
+   friction = 0.1
+/
+&loading
+   pull_distance = 0.762
+/
+EOF
+cat >"$tmp/paper/fig7c_beadB_steel_mu0.nml" <<EOF
+&control
+   title = 'test: bead B, steel, clamped, 40 elements, lock only'
+/
+&sheet
+   thickness = 0.762
+   length = 45.72
+   n_elements = 40
+/
+&tools
+$beadb_tools
+/
+&loading
+   pull_distance = 0.0
+/
+EOF
+cat >"$tmp/bad/fig5a_beadA_steel.nml" <<'EOF'
+&tools
+   bead = 'rectangular'
+   friction = -1.0
+/
+EOF
+cat >"$tmp/strip.nml" <<'EOF'
+&control
+   title = 'test: strip, 10 elements'
+/
+&sheet
+   thickness = 0.762
+   length = 38.1
+   n_elements = 10
+/
+&tools
+   bead = 'none'
+/
+&loading
+   pull_distance = 0.762
+   initial_increment = 0.0762
+   max_increment = 0.762
+/
+EOF
+cat >"$tmp/beadA_free.nml" <<'EOF'
+&control
+   title = 'test: bead A, steel, free edge, 40 elements'
+/
+&sheet
+   thickness = 0.762
+   length = 38.1
+   n_elements = 40
+   left_edge = 'free'
+/
+&tools
+   bead = 'rectangular'
+   friction = 0.1
+/
+&loading
+   pull_distance = 1.524
+/
+EOF
+
+# ---------------------------------------------------------------------------
+# a) run_paper.sh on two small decks
+# ---------------------------------------------------------------------------
+echo "== a) run_paper.sh"
+paper_opts=()
+((have_gnuplot)) || paper_opts=(--no-figures)
+scripts/run_paper.sh --bin "$prog" -j 2 "${paper_opts[@]}" -o "$tmp/out" \
+    --decks "$tmp/paper/fig6_beadB_steel.nml $tmp/paper/fig7c_beadB_steel_mu0.nml" \
+    >"$tmp/a.out" 2>"$tmp/a.err"
+rc=$?
+check "run_paper.sh exits 0 on good decks (got $rc)" test "$rc" -eq 0
+for name in fig6_beadB_steel fig7c_beadB_steel_mu0; do
+    check "$name: run.log kept" test -s "$tmp/out/$name/run.log"
+    check "$name: exit_status 0" grep -qx 0 "$tmp/out/$name/exit_status"
+    check "$name: summary.txt written" test -s "$tmp/out/$name/summary.txt"
+    check "$name: a row of the table" grep -q "^$name .* completed\$" "$tmp/out/paper_table.txt"
+done
+check "the table has a header and two rows" test "$(data_rows "$tmp/out/paper_table.txt")" -eq 2
+check "the table is printed" grep -q '^# deck .*cpu_s .*status' "$tmp/a.out"
+if ((have_gnuplot)); then
+    for png in fig6 fig7 fig8 shape_beadB_lock shape_beadB_pull; do
+        check "figure $png.png drawn" is_png "$tmp/out/figures/$png.png"
+    done
+    check "no figure for decks that did not run (fig9)" test ! -e "$tmp/out/figures/fig9.png"
+else
+    echo "skip the figures: gnuplot is not installed"
+fi
+if ((failures > 0)); then
+    echo "--- run_paper.sh stderr:"
+    cat "$tmp/a.err"
+fi
+
+# ---------------------------------------------------------------------------
+# b) a failing run makes run_paper.sh fail
+# ---------------------------------------------------------------------------
+echo "== b) run_paper.sh with a bad deck"
+scripts/run_paper.sh --bin "$prog" -o "$tmp/outbad" --decks "$tmp/bad/fig5a_beadA_steel.nml" \
+    >"$tmp/b.out" 2>"$tmp/b.err"
+rc=$?
+check "run_paper.sh exits non-zero when a run fails (got $rc)" test "$rc" -ne 0
+check "the failed run's row says bad_input" grep -q '^fig5a_beadA_steel .*bad_input$' "$tmp/b.out"
+check "the failed run's log holds the error" grep -q 'variable friction' "$tmp/outbad/fig5a_beadA_steel/run.log"
+
+# ---------------------------------------------------------------------------
+# c) sweep.sh on a 2x2 grid, and a bad value
+# ---------------------------------------------------------------------------
+echo "== c) sweep.sh"
+scripts/sweep.sh --bin "$prog" -j 2 -o "$tmp/sweep" "$tmp/strip.nml" \
+    n_elements=10,12 pull_distance=0.381,0.762 >"$tmp/c.out" 2>"$tmp/c.err"
+rc=$?
+check "sweep.sh exits 0 (got $rc)" test "$rc" -eq 0
+ndecks=$(find "$tmp/sweep/decks" -name 'case_*.nml' | wc -l)
+check "four decks written (got $ndecks)" test "$ndecks" -eq 4
+# case k: n_elements varies slowest
+expect_n=(10 10 12 12)
+expect_p=(0.381 0.762 0.381 0.762)
+for k in 0 1 2 3; do
+    deck=$tmp/sweep/decks/case_000$k.nml
+    log=$tmp/sweep/runs/case_000$k/run.log
+    check "case_000$k deck: n_elements = ${expect_n[k]}" grep -q "^ *n_elements = ${expect_n[k]}\$" "$deck"
+    check "case_000$k deck: pull_distance = ${expect_p[k]}" grep -q "^ *pull_distance = ${expect_p[k]}\$" "$deck"
+    check "case_000$k: the program read N_ELEMENTS=${expect_n[k]}" grep -q "N_ELEMENTS=${expect_n[k]} *,\$" "$log"
+    check "case_000$k: a row with its values" \
+        grep -Eq "^case_000$k +${expect_n[k]} +${expect_p[k]} .* (completed|localized)\$" "$tmp/sweep/table.txt"
+done
+check "the table has four rows" test "$(data_rows "$tmp/sweep/table.txt")" -eq 4
+check "the table header names the columns" grep -Eq '^# case +n_elements +pull_distance +steady_force_over_Eh +peak_force_over_Eh +final_lift_over_Eh +delta_cr_over_h +max_thinning +status$' "$tmp/sweep/table.txt"
+check "the progress line" grep -q '^done 4/4, 0 failed, eta' "$tmp/c.err"
+check "the table is printed" cmp -s "$tmp/c.out" "$tmp/sweep/table.txt"
+
+scripts/sweep.sh --bin "$prog" -o "$tmp/sweepbad" "$tmp/strip.nml" friction=0.1,-1 \
+    >"$tmp/c2.out" 2>"$tmp/c2.err"
+rc=$?
+check "sweep.sh exits 1 when a run fails (got $rc)" test "$rc" -eq 1
+check "the bad value is a row with status bad_input" grep -Eq '^case_0001 +-1 .* bad_input$' "$tmp/sweepbad/table.txt"
+check "the good value still runs" grep -Eq '^case_0000 +0\.1 .* (completed|localized)$' "$tmp/sweepbad/table.txt"
+check "the error message is listed" grep -q '^# case_0001: bad_input: .*variable friction' "$tmp/sweepbad/table.txt"
+check "the progress line counts the failure" grep -q '^done 2/2, 1 failed' "$tmp/c2.err"
+
+scripts/sweep.sh --bin "$prog" -o "$tmp/sweepunknown" "$tmp/strip.nml" no_such_variable=1 \
+    >/dev/null 2>"$tmp/c3.err"
+rc=$?
+check "an unknown variable is a usage error (exit 2, got $rc)" test "$rc" -eq 2
+check "... naming it" grep -q "unknown variable 'no_such_variable'" "$tmp/c3.err"
+
+# ---------------------------------------------------------------------------
+# d) sweep.sh --slurm
+# ---------------------------------------------------------------------------
+echo "== d) sweep.sh --slurm"
+scripts/sweep.sh --bin "$prog" --slurm -o "$tmp/slurm" "$tmp/strip.nml" \
+    n_elements=10,12,14 >"$tmp/d.out" 2>"$tmp/d.err"
+rc=$?
+check "sweep.sh --slurm exits 0 (got $rc)" test "$rc" -eq 0
+script=$tmp/slurm/sweep.slurm
+check "sweep.slurm written" test -s "$script"
+check "three decks listed" test "$(wc -l <"$tmp/slurm/decks.txt")" -eq 3
+check "#SBATCH --array=0-2 matches the deck count" grep -qx '#SBATCH --array=0-2' "$script"
+check "sweep.slurm passes bash -n" bash -n "$script"
+check "nothing was run locally" test ! -e "$tmp/slurm/runs"
+SLURM_ARRAY_TASK_ID=1 bash "$script" >/dev/null 2>&1
+rc=$?
+check "task 1 run by hand exits 0 (got $rc)" test "$rc" -eq 0
+check "task 1 wrote case_0001's summary" grep -q '^status = ' "$tmp/slurm/runs/case_0001/summary.txt"
+check "task 1 ran case_0001's deck (N_ELEMENTS=12)" grep -q 'N_ELEMENTS=12 *,$' "$tmp/slurm/runs/case_0001/run.log"
+check "task 0 did not run" test ! -e "$tmp/slurm/runs/case_0000"
+scripts/sweep.sh --collect "$tmp/slurm" >"$tmp/d2.out" 2>&1
+rc=$?
+check "--collect exits 1 while tasks are missing (got $rc)" test "$rc" -eq 1
+check "--collect: case_0001 done" grep -Eq '^case_0001 +12 .* (completed|localized)$' "$tmp/slurm/table.txt"
+check "--collect: case_0000 not_run" grep -Eq '^case_0000 +10 .* not_run$' "$tmp/slurm/table.txt"
+SLURM_ARRAY_TASK_ID=0 bash "$script" >/dev/null 2>&1
+SLURM_ARRAY_TASK_ID=2 bash "$script" >/dev/null 2>&1
+scripts/sweep.sh --collect "$tmp/slurm" >/dev/null 2>&1
+rc=$?
+check "--collect exits 0 once every task ran (got $rc)" test "$rc" -eq 0
+check "--collect: three rows" test "$(data_rows "$tmp/slurm/table.txt")" -eq 3
+
+# ---------------------------------------------------------------------------
+# e) bead_curves.sh
+# ---------------------------------------------------------------------------
+echo "== e) bead_curves.sh"
+scripts/sweep.sh --bin "$prog" -j 2 -o "$tmp/beads" "$tmp/beadA_free.nml" lock_depth=2.5,4.7 \
+    >/dev/null 2>"$tmp/e.err"
+rc=$?
+check "the lock_depth sweep runs (got $rc)" test "$rc" -eq 0
+scripts/bead_curves.sh "$tmp/beads" >"$tmp/e.out" 2>>"$tmp/e.err"
+rc=$?
+check "bead_curves.sh exits 0 (got $rc)" test "$rc" -eq 0
+rf=$tmp/beads/bead_curves/restraining.txt
+nf=$tmp/beads/bead_curves/lift.txt
+check "restraining-force curve: origin and two depths" test "$(data_rows "$rf")" -eq 3
+check "lift-force curve: origin and two depths" test "$(data_rows "$nf")" -eq 3
+check "units in the header (N/mm vs mm)" grep -q '^# 1: penetration = lock_depth \[mm\] *2: restraining force \[N/mm\]' "$rf"
+check "the header says steady or peak" grep -q '^# restraining force: .*peak_force_over_Eh\|^# restraining force: steady' "$rf"
+check "depths in column 1" column1_is "$rf" "0.000000 2.500000 4.700000"
+check "forces grow with the depth" column2_increases "$rf"
+check "LS-DYNA keyword file with two curves" \
+    test "$(grep -c '^\*DEFINE_CURVE_TITLE' "$tmp/beads/bead_curves/drawbead_curves.k")" -eq 2
+
+# ---------------------------------------------------------------------------
+# f) shellcheck
+# ---------------------------------------------------------------------------
+if command -v shellcheck >/dev/null 2>&1; then
+    echo "== f) shellcheck"
+    check "shellcheck: batch scripts and this test" shellcheck scripts/run_paper.sh scripts/sweep.sh \
+        scripts/bead_curves.sh scripts/make_docs_figures.sh tests/scripts.sh "$script"
+fi
+
+echo "scripts.sh: $checks checks, $failures failed"
+((failures == 0))
