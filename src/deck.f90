@@ -108,7 +108,7 @@ module deck
       real(dp) :: pull_distance = unset               ! 10 h
       real(dp) :: initial_increment = unset           ! 0.05 h
       real(dp) :: min_increment = unset               ! 1e-6 h
-      real(dp) :: max_increment = unset               ! 0.1 h with friction (first order in the increment), else 0.5 h
+      real(dp) :: max_increment = unset               ! 0.1 h
       integer :: max_iterations = 20
       real(dp) :: tolerance = 1.0e-8_dp               ! relative residual and correction
       ! resolved: the tabulated hardening curve (hardening = 'table')
@@ -876,7 +876,7 @@ contains
    !> is unusable, so that one bad value does not cause others): length 50 h,
    !> bead A r1 = r2 = 4.66 h, b1 = 4.16 h, b2 = 8.83 h, h1 = 1.56 h,
    !> h2 = 5.66 h, pull_distance 10 h, min_increment 1e-6 h, max_increment
-   !> 0.1 h with friction and 0.5 h without, initial_increment 0.05 h (kept within the min/max increments),
+   !> 0.1 h, initial_increment 0.05 h (kept within the min/max increments),
    !> lock_depth h1 + r1 (full lock) with a rectangular bead, 0 without one;
    !> with a profile bead it must be given.
    !>
@@ -899,11 +899,9 @@ contains
       if (is_unset(d%h2)) d%h2 = 5.66_dp*h
       if (is_unset(d%pull_distance)) d%pull_distance = 10.0_dp*h
       if (is_unset(d%min_increment)) d%min_increment = 1.0e-6_dp*h
-      ! friction is first order in the increment (a station's sliding history
-      ! starts at the first converged state in contact): 0.1h with friction
-      if (is_unset(d%max_increment)) then
-         d%max_increment = merge(0.1_dp*h, 0.5_dp*h, d%friction > 0.0_dp)
-      end if
+      ! 0.1h resolves the friction history (which starts at the first
+      ! converged state in contact) and the force curves
+      if (is_unset(d%max_increment)) d%max_increment = 0.1_dp*h
       if (is_unset(d%initial_increment)) then
          d%initial_increment = 0.05_dp*h
          if (is_positive(d%min_increment)) d%initial_increment = &
