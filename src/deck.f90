@@ -102,7 +102,7 @@ module deck
       real(dp) :: penalty = 0.045_dp                  ! k h / E
       real(dp) :: friction = 0.0_dp                   ! mu
       real(dp) :: friction_eps = 0.0333_dp            ! eps of (4.3), units of h
-      real(dp) :: contact_smoothing = 1.0e-3_dp       ! penalty onset smoothed over this penetration, units of h
+      real(dp) :: contact_smoothing = 0.0_dp          ! penalty onset smoothed over this penetration, units of h (0: sharp, as the paper)
       ! &loading
       real(dp) :: lock_depth = unset                  ! h1 + r1 with bead = 'rectangular', 0 with 'none', required with 'profile'
       real(dp) :: pull_distance = unset               ! 10 h
