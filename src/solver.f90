@@ -156,9 +156,9 @@ contains
          ! accept the full step unless the work of the new residual on du,
          ! g1 = du.r(u + du), exceeds that of the old, g0 = du.r(u) (a far
          ! overshoot, e.g. a station thrown deep into a tool); then take the
-         ! secant step g0/(g0 - g1), clamped to
-         ! [0.1, 1].  An iterate a material point cannot take (a fibre
-         ! inverted, a failed return map) is halved back instead.
+         ! secant step g0/(g0 - g1), clamped to [0.1, 1].  An iterate that a
+         ! material point cannot take (a fibre inverted, a failed return
+         ! map) is halved back instead.  At most three tries.
          backtrack = 0
          g1 = 0.0_dp
          if (it > 0) g1 = dot_product(du, merge(0.0_dp, r, ld%fixed))
