@@ -45,6 +45,7 @@ module analysis
       ! work and stored/dissipated energies when pulling started
       real(dp) :: work = 0.0_dp, work_pull_start = 0.0_dp
       real(dp) :: last_conjugate = 0.0_dp, last_reaction = 0.0_dp
+      real(dp), allocatable :: reactions(:)      ! residual (reactions at fixed dofs), last increment
       real(dp) :: energy_pull_start(4) = 0.0_dp
    end type run_record
 
@@ -248,9 +249,18 @@ contains
             end if
          end if
          nl_old = nl_new
-         ! external work, trapezoid in the load parameter, plus the dead loads
-         rec%work = rec%work + 0.5_dp*dt*(rec%last_conjugate + merge(punch, reaction, phase == 'lock')) &
+         ! external work, trapezoidal in each increment: the reactions on the
+         ! prescribed motions (the pull N d(delta), an edge following the
+         ! binder), the rising lower tool (F dH) and the dead loads
+         if (.not. allocated(rec%reactions)) then
+            allocate (rec%reactions(m%n_dof))
+            rec%reactions = 0.0_dp
+         end if
+         rec%work = rec%work + 0.5_dp*dot_product(merge(rec%reactions + r, 0.0_dp, ld%fixed), &
+                                                  s%u - u_prev) &
                     + dot_product(ld%f_ext, s%u - u_prev)
+         if (phase == 'lock') rec%work = rec%work + 0.5_dp*dt*(rec%last_conjugate + punch)
+         rec%reactions = r
          rec%last_conjugate = merge(punch, reaction, phase == 'lock')
          rec%last_reaction = reaction
          if (phase == 'lock') then
