@@ -31,20 +31,19 @@ module analysis
       logical :: nl_localized = .false.
       character(len=8) :: nl_phase = ''
       real(dp) :: nl_load_cr = 0.0_dp, nl_s_star = 0.0_dp
-      real(dp) :: peak_force = 0.0_dp, lock_force = 0.0_dp, last_force = 0.0_dp
+      real(dp) :: peak_force = 0.0_dp, lock_force = 0.0_dp
       real(dp) :: last_lift = 0.0_dp
       integer :: increments = 0, newton_iterations = 0, cutbacks = 0
       integer :: status = 0                       ! 0 ok, 2 no convergence
       character(len=200) :: message = ''
       real(dp), allocatable :: pull_delta(:), pull_force(:)
       integer :: n_pull = 0
-      real(dp) :: min_indicator = 1.0_dp
       real(dp) :: max_penetration = 0.0_dp
       ! energy bookkeeping (N mm per mm of width): external work so far, the
       ! force conjugate to the load parameter at the last increment, and the
       ! work and stored/dissipated energies when pulling started
       real(dp) :: work = 0.0_dp, work_pull_start = 0.0_dp
-      real(dp) :: last_conjugate = 0.0_dp, last_reaction = 0.0_dp
+      real(dp) :: last_conjugate = 0.0_dp
       real(dp), allocatable :: reactions(:)      ! residual (reactions at fixed dofs), last increment
       real(dp) :: energy_pull_start(4) = 0.0_dp
    end type run_record
@@ -142,7 +141,8 @@ contains
       dt = d%initial_increment
       ! the force doing work on the load parameter: F while locking (starts
       ! at 0 on the flat sheet), N while pulling (the reaction reached so far)
-      rec%last_conjugate = merge(0.0_dp, rec%last_reaction, phase == 'lock')
+      rec%last_conjugate = 0.0_dp
+      if (phase == 'pull' .and. allocated(rec%reactions)) rec%last_conjugate = rec%reactions(m%n_dof - 3)
       nl_old = strain_limit_indicator(m, s%gpn(1, :, :), d%tearing_length*h)
       if (phase == 'pull') then
          rec%work_pull_start = rec%work
@@ -218,7 +218,6 @@ contains
          if (m%has_tools) pen = max(0.0_dp, maxval(s%cn(8, :, :, :)))/h
          rec%max_penetration = max(rec%max_penetration, pen)
          min_ind = minval(s%indicator)
-         rec%min_indicator = min_ind
          ! localization (3.1): first Gauss station whose indicator crosses zero,
          ! interpolated linearly inside the increment
          ! localization (3.1): the first Gauss station whose indicator crosses
@@ -262,14 +261,12 @@ contains
          if (phase == 'lock') rec%work = rec%work + 0.5_dp*dt*(rec%last_conjugate + punch)
          rec%reactions = r
          rec%last_conjugate = merge(punch, reaction, phase == 'lock')
-         rec%last_reaction = reaction
          if (phase == 'lock') then
             rec%lock_force = punch
             call write_row(out%lock, [p/h, punch/eh, punch, real(nr%iterations, dp), dt/h, &
                                       min_ind, pen, reaction/eh, reaction])
          else
             rec%peak_force = max(rec%peak_force, reaction)
-            rec%last_force = reaction
             rec%last_lift = lift
             call record_pull(rec, p, reaction)
             call write_row(out%pull, [p/h, reaction/eh, reaction, real(nr%iterations, dp), &

@@ -126,7 +126,7 @@ contains
       call write_summary_line(u, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
       call write_summary_line(u, 'lock_force_over_Eh', rec%lock_force/eh, m%has_tools)
       call write_summary_line(u, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
-      call write_summary_line(u, 'final_force_over_Eh', rec%last_force/eh, rec%n_pull > 0)
+      call write_summary_line(u, 'final_force_over_Eh', rec%pull_force(max(rec%n_pull, 1))/eh, rec%n_pull > 0)
       call write_summary_line(u, 'steady_force_over_Eh', fsteady/eh, steady)
       call write_summary_line(u, 'steady_reached_at_delta_over_h', steady_at/h, steady)
       call write_summary_line(u, 'final_lift_over_Eh', rec%last_lift/eh, rec%n_pull > 0 .and. m%has_tools)
