@@ -82,10 +82,12 @@ contains
                   call contact_station(m%tool(it), shifts(it), m%penalty, m%contact_smoothing, m%friction, &
                                        m%friction_eps, p, s%cn(:, ig, e, it), &
                                        s%c1(:, ig, e, it), fc, kc)
+                  ! a station out of contact contributes nothing
+                  if (s%c1(1, ig, e, it) < 0.5_dp) cycle
+                  s%n_contact = s%n_contact + 1
                   ! the tool pushes the sheet with fc: it enters r = f_int - f_ext with -
                   re = re - dv*matmul(fc, nm)
                   s%tool_force(:, it) = s%tool_force(:, it) + dv*fc
-                  if (s%c1(1, ig, e, it) > 0.5_dp) s%n_contact = s%n_contact + 1
                   ke = ke - dv*matmul(transpose(nm), matmul(kc, nm))
                end do
             end do
