@@ -17,6 +17,7 @@ module analysis
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular
    use output, only: output_files, write_row, write_strains
+   use errors, only: warn
    use tools, only: tool_level
    implicit none
    private
@@ -134,6 +135,7 @@ contains
       integer :: k_cr
       logical :: have_prev
       character(len=16) :: tag
+      character(len=100) :: msg
       h = m%thickness
       eh = m%youngs*h
       call band_init(kb, m%n_dof, half_band, half_band)
@@ -216,6 +218,13 @@ contains
          rec%increments = rec%increments + 1
          pen = 0.0_dp
          if (m%has_tools) pen = max(0.0_dp, maxval(s%cn(8, :, :, :)))/h
+         ! penetrations above 0.05h mean the penalty is too soft for the
+         ! forces at hand (DESIGN §5): warn once per run
+         if (pen > 0.05_dp .and. rec%max_penetration <= 0.05_dp) then
+            write (msg, '(a,es9.3,a,es10.3,a)') 'penetration ', pen, 'h > 0.05h at load/h = ', &
+               p/h, ' in '//phase//': raise &tools penalty'
+            call warn(msg)
+         end if
          rec%max_penetration = max(rec%max_penetration, pen)
          min_ind = minval(s%indicator)
          ! localization (3.1): first Gauss station whose indicator crosses zero,
