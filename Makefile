@@ -26,7 +26,7 @@ CHECK_FFLAGS ?= -std=f2008 -fimplicit-none -Wall -Wextra -Wimplicit-interface \
 FFLAGS ?= $(RELEASE_FFLAGS)
 LDFLAGS ?=
 LDLIBS ?= -llapack -lblas
-DECK ?= input/strip_tension.nml
+DECK ?= input/fig5a_beadA_steel.nml
 
 # Where this build goes; check-build and test-check re-run make with
 # BUILD=build-check BIN=bin/drawbead-check FFLAGS=$(CHECK_FFLAGS).
