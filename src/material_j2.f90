@@ -20,7 +20,10 @@
 !>   statev(1) = ebar_p, statev(2) = eps22 (total thickness log strain),
 !>   statev(3) = sigma33 (copy for output), statev(4) = continuum tangent
 !>   d sigma11 / d eps11 at fixed eps33 (alpha of (A.1): plastic only if the
-!>   increment was plastic).
+!>   increment was plastic), statev(5:6) = sigma_y(ebar_p) and its slope
+!>   H', cached so that an elastic call evaluates no hardening law
+!>   (statev(5) <= 0: not yet known, computed on entry; the all-zero virgin
+!>   state is therefore valid).
 !>   props(1:4) = E, nu, R, law id; then the law constants (see umat).
 !>
 !> Call check_props once at set-up: umat trusts its constants (it is called
@@ -35,7 +38,7 @@ module material_j2
    public :: umat, flow_stress, hill_equivalent, check_props, read_curve_file
 
    !> number of state variables umat needs
-   integer, parameter :: n_statev = 4
+   integer, parameter :: n_statev = 6
    !> props entries common to every law: E, nu, R, law id
    integer, parameter :: n_props_fixed = 4
    !> hardening law ids (props(4))
@@ -116,9 +119,9 @@ contains
       real(dp), intent(in) :: props(nprops)
       real(dp), intent(inout) :: pnewdt
 
-      real(dp) :: e_mod, nu, r_value, e_ps
-      real(dp) :: d(2, 2), sig_tr(2), sig(2), dsig(2), flow(2), dflow(2)
-      real(dp) :: ep_n, sy_n, h_n, seq_tr, seq, dp_inc, h_end, denom, sy_mid, h_mid
+      real(dp) :: e_mod, nu, r_value, e_ps, d12
+      real(dp) :: sig_tr(2), sig(2), dsig(2), flow(2), dflow(2)
+      real(dp) :: ep_n, sy_n, h_n, seq_tr, seq, dp_inc, sy_end, h_end, denom
       logical :: ok
 
       ! stran is not needed (see header); the associate marks it as read.
@@ -135,13 +138,18 @@ contains
       nu = props(2)
       r_value = props(3)
       e_ps = e_mod/(1.0_dp - nu**2)
-      d = reshape([e_ps, e_ps*nu, e_ps*nu, e_ps], [2, 2])
+      d12 = e_ps*nu
 
       ! Elastic predictor.
-      sig_tr(1) = stress(1) + d(1, 1)*dstran(1) + d(1, 2)*dstran(2)
-      sig_tr(2) = stress(2) + d(2, 1)*dstran(1) + d(2, 2)*dstran(2)
+      sig_tr(1) = stress(1) + e_ps*dstran(1) + d12*dstran(2)
+      sig_tr(2) = stress(2) + d12*dstran(1) + e_ps*dstran(2)
       ep_n = statev(1)
-      call flow_stress(ep_n, props, nprops, sy_n, h_n)
+      if (statev(5) > 0.0_dp) then
+         sy_n = statev(5)
+         h_n = statev(6)
+      else
+         call flow_stress(ep_n, props, nprops, sy_n, h_n)
+      end if
       seq_tr = hill_equivalent(sig_tr, r_value)
 
       if (seq_tr <= (1.0_dp + tol_yield)*sy_n) then
@@ -153,17 +161,22 @@ contains
          stress = sig_tr
          statev(3) = stress(2)
          statev(4) = e_ps
+         statev(5) = sy_n
+         statev(6) = h_n
          sse = elastic_energy(stress, e_mod, nu)
-         ddsdde = d
+         ddsdde(1, 1) = e_ps
+         ddsdde(2, 1) = d12
+         ddsdde(1, 2) = d12
+         ddsdde(2, 2) = e_ps
          return
       end if
 
       ! Plastic: backward-Euler return mapping.
       ok = sy_n > 0.0_dp .and. all(ieee_is_finite(sig_tr))
-      if (ok) call return_map(sig_tr, ep_n, sy_n, seq_tr, props, nprops, sig, dp_inc, &
-                              h_end, ok)
+      if (ok) call return_map(sig_tr, ep_n, sy_n, h_n, seq_tr, props, nprops, sig, dp_inc, &
+                              sy_end, h_end, ok)
       if (.not. ok) then
-         ddsdde = d
+         ddsdde = reshape([e_ps, d12, d12, e_ps], [2, 2])
          pnewdt = min(pnewdt, pnewdt_cut)
          return
       end if
@@ -175,9 +188,10 @@ contains
 
       ! Continuum tangent (A.1) with alpha = 1, (1,1) entry (eps33 fixed):
       ! D - (D n)(D n)^T / (n^T D n + H').
-      dflow = matmul(d, flow)
+      dflow(1) = e_ps*flow(1) + d12*flow(2)
+      dflow(2) = d12*flow(1) + e_ps*flow(2)
       denom = dot_product(flow, dflow) + h_end
-      statev(4) = d(1, 1) - dflow(1)**2/denom
+      statev(4) = e_ps - dflow(1)**2/denom
 
       ! Thickness strain, DESIGN §4: elastic part from sigma22 = 0, plastic
       ! part from plastic incompressibility of (A.3):
@@ -185,14 +199,16 @@ contains
       dsig = sig - stress
       statev(2) = statev(2) - nu/e_mod*(dsig(1) + dsig(2)) - dp_inc*(flow(1) + flow(2))
       statev(1) = ep_n + dp_inc
+      statev(5) = sy_end
+      statev(6) = h_end
       stress = sig
       statev(3) = stress(2)
       sse = elastic_energy(stress, e_mod, nu)
       ! Dissipation: on the yield surface sigma : d eps_p = sbar d ep = sigma_y(ep) d ep,
-      ! integrated over the increment with Simpson's rule (the backward-Euler
-      ! value dp*sbar_end overestimates it at first order in the increment).
-      call flow_stress(ep_n + 0.5_dp*dp_inc, props, nprops, sy_mid, h_mid)
-      spd = spd + dp_inc*(sy_n + 4.0_dp*sy_mid + seq)/6.0_dp
+      ! so the increment dissipates W(ep_n + dp) - W(ep_n), W the integral of
+      ! the hardening curve, exact for any increment size.
+      spd = spd + plastic_work(ep_n + dp_inc, sy_end, props, nprops) &
+            - plastic_work(ep_n, sy_n, props, nprops)
    end subroutine umat
 
    !> Backward-Euler return mapping onto the Hill yield surface.
@@ -215,23 +231,27 @@ contains
    !> sig_tr [in]  trial stress (s11, s33).
    !> ep_n   [in]  equivalent plastic strain at the start of the increment.
    !> sy_n   [in]  sigma_y(ep_n) > 0.
+   !> h_n    [in]  d sigma_y / d ebar_p at ep_n (with sy_n: the first
+   !>              iterate, gamma = 0, needs no hardening-law call).
    !> seq_tr [in]  sbar(sig_tr) > sy_n.
    !> props  [in]  material constants (see umat).
    !> nprops [in]  size of props.
    !> sig    [out] end stress on the yield surface.
    !> dp_inc [out] equivalent plastic strain increment dp > 0.
+   !> sy_end [out] sigma_y(ep_n + dp).
    !> h_end  [out] hardening modulus d sigma_y / d ebar_p at ep_n + dp.
    !> ok     [out] .false. if no convergence or a non-finite / non-positive
    !>              value appeared; sig, dp_inc, h_end are then undefined.
-   pure subroutine return_map(sig_tr, ep_n, sy_n, seq_tr, props, nprops, sig, dp_inc, h_end, ok)
+   pure subroutine return_map(sig_tr, ep_n, sy_n, h_n, seq_tr, props, nprops, sig, dp_inc, &
+                              sy_end, h_end, ok)
       integer, intent(in) :: nprops
-      real(dp), intent(in) :: sig_tr(2), ep_n, sy_n, seq_tr
+      real(dp), intent(in) :: sig_tr(2), ep_n, sy_n, h_n, seq_tr
       real(dp), intent(in) :: props(nprops)
-      real(dp), intent(out) :: sig(2), dp_inc, h_end
+      real(dp), intent(out) :: sig(2), dp_inc, sy_end, h_end
       logical, intent(out) :: ok
 
       real(dp) :: e_mod, nu, r, k_s, k_t, k_eff, a_s, a_t, s_tr, t_tr
-      real(dp) :: gam, gam_lo, gam_hi, gam_new, q_s, q_t, seq, dseq, sy, g, dg
+      real(dp) :: gam, gam_lo, gam_hi, gam_new, q_s, q_t, seq, dseq, g, dg
       integer :: iter
 
       e_mod = props(1)
@@ -252,16 +272,17 @@ contains
       ok = .false.
       sig = sig_tr
       dp_inc = 0.0_dp
-      h_end = 0.0_dp
+      sy_end = sy_n
+      h_end = h_n
       do iter = 1, max_newton
          q_s = 1.0_dp/(1.0_dp + gam*k_s)
          q_t = 1.0_dp/(1.0_dp + gam*k_t)
          seq = sqrt(0.5_dp*(a_s*q_s**2 + a_t*q_t**2))
          dp_inc = gam*seq
-         call flow_stress(ep_n + dp_inc, props, nprops, sy, h_end)
-         g = seq - sy
-         if (.not. (sy > 0.0_dp .and. ieee_is_finite(g))) return
-         if (abs(g) <= tol_newton*sy) then
+         if (iter > 1) call flow_stress(ep_n + dp_inc, props, nprops, sy_end, h_end)
+         g = seq - sy_end
+         if (.not. (sy_end > 0.0_dp .and. ieee_is_finite(g))) return
+         if (abs(g) <= tol_newton*sy_end) then
             ok = .true.
             exit
          end if
@@ -364,7 +385,7 @@ contains
       hardening_modulus = 0.0_dp
       if (nprops < n_props_fixed + 1) return
 
-      select case (nint(props(4)))
+      select case (int(props(4)))
       case (law_swift)
          if (nprops < n_props_fixed + 3) return
          ! sigma_y = K (eps0 + ep)^n
@@ -402,6 +423,48 @@ contains
          return
       end select
    end subroutine flow_stress
+
+   !> Plastic work per unit volume W(ebar_p) = int_0^ebar_p sigma_y de, up
+   !> to a constant of the law (only differences are used): the dissipation
+   !> of a plastic increment is W(ep_n + dp) - W(ep_n) (exact, because on the
+   !> yield surface sigma : d eps_p = sigma_y(ebar_p) d ebar_p).
+   !>   Swift: W = sigma_y (eps0 + ep)/(n + 1)   [+ const]
+   !>   Voce:  W = (sigma0 + Q) ep - (sigma_y - sigma0)/b  (W = sigma0 ep if b = 0)
+   !>   table: the trapezoids of the segments up to ep (last one extrapolated).
+   !>
+   !> ep      [in] equivalent plastic strain.
+   !> sigma_y [in] flow stress at ep (from flow_stress; saves a law call).
+   !> props   [in] material constants (see umat).
+   !> nprops  [in] size of props.
+   pure function plastic_work(ep, sigma_y, props, nprops) result(w)
+      integer, intent(in) :: nprops
+      real(dp), intent(in) :: ep, sigma_y
+      real(dp), intent(in) :: props(nprops)
+      real(dp) :: w
+
+      integer :: m, i
+
+      w = 0.0_dp
+      select case (int(props(4)))
+      case (law_swift)
+         w = sigma_y*(props(6) + ep)/(props(7) + 1.0_dp)
+      case (law_voce)
+         if (props(7) > 0.0_dp) then
+            w = (props(5) + props(6))*ep - (sigma_y - props(5))/props(7)
+         else
+            w = props(5)*ep
+         end if
+      case (law_table)
+         ! Point i is (props(4+2i), props(5+2i)); full segments below ep,
+         ! then the part of the segment holding ep (ending at sigma_y).
+         m = int(props(5))
+         do i = 1, m - 1
+            if (i == m - 1 .or. ep < props(6 + 2*i)) exit
+            w = w + 0.5_dp*(props(5 + 2*i) + props(7 + 2*i))*(props(6 + 2*i) - props(4 + 2*i))
+         end do
+         w = w + 0.5_dp*(props(5 + 2*i) + sigma_y)*(ep - props(4 + 2*i))
+      end select
+   end function plastic_work
 
    !> Hill 1948 equivalent stress for normal anisotropy with zero thickness
    !> stress, paper appendix (A.3) with sigma<22> = 0:
@@ -467,13 +530,13 @@ contains
       ok = .false.
       if (nstatv < n_statev .or. nprops < n_props_fixed) return
       if (.not. abs(props(4)) < 1.0e6_dp) return
-      select case (nint(props(4)))
+      select case (int(props(4)))
       case (law_swift, law_voce)
          ok = nprops >= n_props_fixed + 3
       case (law_table)
          if (nprops < n_props_fixed + 1) return
          if (.not. abs(props(5)) < 1.0e6_dp) return
-         ok = nint(props(5)) >= 2 .and. nprops >= n_props_fixed + 1 + 2*nint(props(5))
+         ok = int(props(5)) >= 2 .and. nprops >= n_props_fixed + 1 + 2*int(props(5))
       case default
          ok = .false.
       end select

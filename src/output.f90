@@ -8,7 +8,7 @@ module output
    use hermite, only: n_gauss, gauss_xi, hermite_shape
    use mesh, only: element_dofs
    use element, only: v_dofs, w_dofs
-   use section, only: ih_stretch, ih_statev
+   use section, only: ih_strain, ih_statev
    use model, only: model_type, state_type, gauss_position
    use tools, only: tool_sample
    implicit none
@@ -127,8 +127,8 @@ contains
             v = dot_product(nv, s%u(dofs(v_dofs)))
             w = dot_product(nv, s%u(dofs(w_dofs)))
             eps = s%gpn(1, ig, e)
-            top = log(s%hn(ih_stretch, m%npt, ig, e))
-            bot = log(s%hn(ih_stretch, 1, ig, e))
+            top = s%hn(ih_strain, m%npt, ig, e)
+            bot = s%hn(ih_strain, 1, ig, e)
             e22 = s%hn(ih_statev + 1, mid, ig, e)
             epmax = maxval(s%hn(ih_statev, :, ig, e))
             write (unit, fmt_row) gauss_position(m, e, ig)/h, (gauss_position(m, e, ig) + v)/h, &

@@ -6,7 +6,8 @@
 !> log-strain increment ln(Lambda_k/Lambda_k,old) with the width strain held.
 !>
 !> The history of one material point is one column of hist(n_hist, npt):
-!>   hist(ih_stretch)      converged fibre stretch Lambda_k
+!>   hist(ih_strain)       converged fibre log strain ln Lambda_k (kept as
+!>                         a logarithm: one log per station and call)
 !>   hist(ih_zbar)         current distance from the mid-surface (lagged)
 !>   hist(ih_stress:+1)    Kirchhoff stress (tau_11, tau_33)
 !>   hist(ih_sse), (ih_spd) elastic energy and plastic dissipation densities
@@ -16,10 +17,10 @@ module section
    use material_j2, only: umat, n_statev
    implicit none
    private
-   public :: n_hist, ih_stretch, ih_zbar, ih_stress, ih_sse, ih_spd, ih_statev, &
+   public :: n_hist, ih_strain, ih_zbar, ih_stress, ih_sse, ih_spd, ih_statev, &
              section_init, section_response, section_localization, section_update_zbar
 
-   integer, parameter :: ih_stretch = 1, ih_zbar = 2, ih_stress = 3, ih_sse = 5, &
+   integer, parameter :: ih_strain = 1, ih_zbar = 2, ih_stress = 3, ih_sse = 5, &
                          ih_spd = 6, ih_statev = 7
    integer, parameter :: n_hist = ih_statev - 1 + n_statev
 
@@ -32,7 +33,7 @@ contains
       real(dp), intent(in) :: z(:)
       real(dp), intent(out) :: hist(:, :)
       hist = 0.0_dp
-      hist(ih_stretch, :) = 1.0_dp
+      hist(ih_strain, :) = 0.0_dp
       hist(ih_zbar, :) = z
    end subroutine section_init
 
@@ -51,7 +52,7 @@ contains
       real(dp), intent(out) :: h1(:, :), force, moment, c(2, 2)
       real(dp), intent(inout) :: pnewdt
       integer :: k
-      real(dp) :: lam, zb, tau, stiff, dstran(2), stran(2), ddsdde(2, 2), wl, wl2
+      real(dp) :: lam, log_lam, zb, tau, stiff, dstran(2), stran(2), ddsdde(2, 2), wl, wl2
       force = 0.0_dp
       moment = 0.0_dp
       c = 0.0_dp
@@ -64,13 +65,14 @@ contains
             pnewdt = min(pnewdt, 0.25_dp)
             return
          end if
-         stran = [log(hn(ih_stretch, k)), 0.0_dp]
-         dstran = [log(lam/hn(ih_stretch, k)), 0.0_dp]
+         log_lam = log(lam)
+         stran = [hn(ih_strain, k), 0.0_dp]
+         dstran = [log_lam - hn(ih_strain, k), 0.0_dp]
          call umat(h1(ih_stress:ih_stress + 1, k), h1(ih_statev:, k), ddsdde, &
                    h1(ih_sse, k), h1(ih_spd, k), stran, dstran, props, size(props), &
                    n_statev, pnewdt)
          if (pnewdt < 1.0_dp) return
-         h1(ih_stretch, k) = lam
+         h1(ih_strain, k) = log_lam
          tau = h1(ih_stress, k)
          stiff = ddsdde(1, 1)
          wl = wz(k)/lam
@@ -106,7 +108,7 @@ contains
       t = hist(ih_zbar, npt) - hist(ih_zbar, 1)
       c11 = 0.0_dp; c12 = 0.0_dp; c22 = 0.0_dp
       do k = 1, npt
-         lam = hist(ih_stretch, k)
+         lam = exp(hist(ih_strain, k))
          zb = sqrt(12.0_dp)*hist(ih_zbar, k)/t
          wl2 = wz(k)*(hist(ih_statev + 3, k) - hist(ih_stress, k))/(lam*lam)
          c11 = c11 + wl2
