@@ -175,7 +175,6 @@ contains
             write (output_unit, '(a5,1x,a,es10.3,a,i3,a,es9.2,2a)') phase, 'cutback  d/h=', dt/h, &
                '  it', nr%iterations, '  res', nr%residual(max(nr%iterations - 1, 0)), '  ', trim(tag)
             dt = 0.25_dp*dt
-            have_prev = .false.
             s%u1 = s%u
             if (dt < d%min_increment) then
                write (rec%message, '(3a,es10.3,a)') 'no convergence in ', phase, &
@@ -206,7 +205,6 @@ contains
             write (output_unit, '(a5,1x,a,es10.3,a,f6.2)') phase, 'cutback  d/h=', dt/h, &
                '  force jump', force_change
             dt = 0.25_dp*dt
-            have_prev = .false.
             s%u1 = s%u
             cycle
          end if
