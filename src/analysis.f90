@@ -131,7 +131,7 @@ contains
       type(load_type) :: ld
       type(newton_result) :: nr
       real(dp) :: p, dt, dt_prev, h, eh, r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el)
-      real(dp) :: reaction, punch, lift, pen, frac, min_ind, force_change, target
+      real(dp) :: reaction, punch, lift, pen, frac, min_ind, force_change, target, jump
       integer :: k_cr
       logical :: have_prev
       character(len=16) :: tag
@@ -199,7 +199,13 @@ contains
          force_change = abs(merge(punch, reaction, phase == 'lock') - rec%last_conjugate)/ &
                         max(abs(rec%last_conjugate), abs(merge(punch, reaction, phase == 'lock')), &
                             1.0e-5_dp*eh)
-         if (force_change > 0.5_dp .and. abs(rec%last_conjugate) > 1.0e-4_dp*eh .and. &
+         ! While locking, a steep rise (relative change of F above 5 times
+         ! that of H) of more than 5 lock_force_change is redone as well: the
+         ! squeeze is path dependent and must be entered in small steps.
+         jump = 0.5_dp
+         if (phase == 'lock' .and. force_change > 5.0_dp*dt/(p + dt)) &
+            jump = min(jump, 5.0_dp*d%lock_force_change)
+         if (force_change > jump .and. abs(rec%last_conjugate) > 1.0e-4_dp*eh .and. &
              dt > 4.0_dp*d%min_increment) then
             rec%cutbacks = rec%cutbacks + 1
             write (output_unit, '(a5,1x,a,es10.3,a,f6.2)') phase, 'cutback  d/h=', dt/h, &
@@ -298,7 +304,13 @@ contains
          ! faces): on the free-edge bead A deck the punch force at full lock
          ! moves by 3% when the increments are halved at 10% per increment,
          ! by 0.5% at 2%, by 0.1% at 1% (which doubles the locking cost).
-         target = merge(d%lock_force_change, d%pull_force_change, phase == 'lock')
+         ! While locking the tighter target only acts where F rises steeply
+         ! (its relative change above 5 times that of H, i.e. faster than
+         ! H^5: the squeeze), so the gradual rise before costs nothing.
+         target = d%pull_force_change
+         if (phase == 'lock') then
+            target = merge(d%lock_force_change, 0.1_dp, force_change > 5.0_dp*dt/p)
+         end if
          if (force_change > target .and. abs(rec%last_conjugate) > 1.0e-4_dp*eh) then
             dt = max(max(0.25_dp, target/force_change)*dt, d%min_increment)
          else if (nr%iterations <= 3) then
