@@ -77,13 +77,15 @@ contains
    !>                  (3) sigma33, (4) continuum tangent dsigma11/deps11 at
    !>                  fixed eps33, end state: E/(1-nu^2) for an elastic or
    !>                  unloading increment, elasto-plastic (A.1) with
-   !>                  alpha = 1 for a plastic one.
+   !>                  alpha = 1 for a plastic one, (5:6) sigma_y and H' at
+   !>                  ebar_p (a cache; 0 = not yet known).
    !> ddsdde  [out]    consistent tangent d sigma_end / d dstran (2x2,
    !>                  symmetric); D for an elastic increment.
    !> sse     [in,out] elastic strain energy density at the end of the
    !>                  increment, (s11^2 + s33^2 - 2 nu s11 s33)/(2E).
    !> spd     [in,out] plastic dissipation density, accumulated:
-   !>                  spd = spd + int sigma_y d ep over the increment (Simpson).
+   !>                  spd = spd + int sigma_y d ep over the increment (exact: W(ep_n + dp) - W(ep_n)
+   !>                  with W the integral of the hardening curve).
    !> stran   [in]     total log strain (eps11, eps33) at the start of the
    !>                  increment.  Not needed: the stress is the state of
    !>                  this additive model.  Kept for the UMAT interface.
