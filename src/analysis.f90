@@ -131,9 +131,9 @@ contains
       type(load_type) :: ld
       type(newton_result) :: nr
       real(dp) :: p, dt, dt_prev, h, eh, r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el)
-      real(dp) :: reaction, punch, lift, pen, frac, min_ind, force_change, target, jump
+      real(dp) :: reaction, punch, lift, pen, frac, min_ind, force, force_change, target, jump
       integer :: k_cr
-      logical :: have_prev
+      logical :: have_prev, steep
       character(len=16) :: tag
       character(len=100) :: msg
       h = m%thickness
@@ -196,15 +196,17 @@ contains
          ! floored at 1e-5 E h): a jump of more than half from an established
          ! force (> 1e-4 E h, so not the first elastic ramp) is not resolved
          ! (the closing binder's final squeeze): redo the increment smaller
-         force_change = abs(merge(punch, reaction, phase == 'lock') - rec%last_conjugate)/ &
-                        max(abs(rec%last_conjugate), abs(merge(punch, reaction, phase == 'lock')), &
-                            1.0e-5_dp*eh)
-         ! While locking, a steep rise (relative change of F above 5 times
-         ! that of H) of more than 5 lock_force_change is redone as well: the
-         ! squeeze is path dependent and must be entered in small steps.
-         jump = 0.5_dp
-         if (phase == 'lock' .and. force_change > 5.0_dp*dt/(p + dt)) &
-            jump = min(jump, 5.0_dp*d%lock_force_change)
+         force = merge(punch, reaction, phase == 'lock')
+         force_change = abs(force - rec%last_conjugate)/ &
+                        max(abs(rec%last_conjugate), abs(force), 1.0e-5_dp*eh)
+         ! While locking, F rising faster than H^5 (its relative change above
+         ! 5 times that of H) is the binder squeeze: path dependent (the sheet
+         ! is flattened plastically between the faces), so it is entered with
+         ! squeeze_force_change per increment, and a rise of more than 5 times
+         ! that is redone like a jump.
+         steep = phase == 'lock' .and. force_change > 5.0_dp*dt/(p + dt)
+         target = merge(d%squeeze_force_change, d%max_force_change, steep)
+         jump = merge(min(0.5_dp, 5.0_dp*target), 0.5_dp, steep)
          if (force_change > jump .and. abs(rec%last_conjugate) > 1.0e-4_dp*eh .and. &
              dt > 4.0_dp*d%min_increment) then
             rec%cutbacks = rec%cutbacks + 1
@@ -273,7 +275,7 @@ contains
                     + dot_product(ld%f_ext, s%u - u_prev)
          if (phase == 'lock') rec%work = rec%work + 0.5_dp*dt*(rec%last_conjugate + punch)
          rec%reactions = r
-         rec%last_conjugate = merge(punch, reaction, phase == 'lock')
+         rec%last_conjugate = force
          if (phase == 'lock') then
             rec%lock_force = punch
             call write_row(out%lock, [p/h, punch/eh, punch, real(nr%iterations, dp), dt/h, &
@@ -290,7 +292,7 @@ contains
          write (output_unit, '(a5,i6,a,es11.4,a,es9.2,a,i3,a,es9.2,a,es10.3,a,es11.4,2a)') &
             phase, rec%increments, '  load/h=', p/h, '  d/h=', dt/h, '  it', nr%iterations, &
             '  res', nr%residual(nr%iterations), '  loc', min_ind, '  force/Eh=', &
-            merge(punch, reaction, phase == 'lock')/eh, merge(' LOCALIZED', '          ', rec%localized), &
+            force/eh, merge(' LOCALIZED', '          ', rec%localized), &
             merge(' NONLOCAL', '         ', rec%nl_localized)
          if (d%log_residuals) write (output_unit, '(a,*(es9.2))') '      residuals:', &
             nr%residual(0:nr%iterations)
@@ -298,19 +300,10 @@ contains
          if (rec%localized .and. rec%nl_localized .and. d%stop_at_localization) return
          ! grow after easy convergence, shrink after a hard one; and resolve
          ! fast changes of the force (the closing binder's final squeeze, the
-         ! first slip over a radius): about lock_force_change (F) or
-         ! pull_force_change (N) per increment.  The squeeze is path
-         ! dependent (the sheet is flattened plastically between the binder
-         ! faces): on the free-edge bead A deck the punch force at full lock
-         ! moves by 3% when the increments are halved at 10% per increment,
-         ! by 0.5% at 2%, by 0.1% at 1% (which doubles the locking cost).
-         ! While locking the tighter target only acts where F rises steeply
-         ! (its relative change above 5 times that of H, i.e. faster than
-         ! H^5: the squeeze), so the gradual rise before costs nothing.
-         target = d%pull_force_change
-         if (phase == 'lock') then
-            target = merge(d%lock_force_change, 0.1_dp, force_change > 5.0_dp*dt/p)
-         end if
+         ! first slip over a radius): about target per increment.  On the
+         ! free-edge bead A deck the punch force at full lock moves by 3% when
+         ! the increments are halved at 10% per increment in the squeeze, by
+         ! 0.5% at 2%, by 0.1% at 1% (which doubles the locking cost).
          if (force_change > target .and. abs(rec%last_conjugate) > 1.0e-4_dp*eh) then
             dt = max(max(0.25_dp, target/force_change)*dt, d%min_increment)
          else if (nr%iterations <= 3) then

@@ -13,7 +13,7 @@
 !>              penalty, friction, friction_eps, contact_smoothing
 !>   &loading   lock_depth, pull_distance, initial_increment,
 !>              min_increment, max_increment, max_iterations, tolerance,
-!>              lock_force_change, pull_force_change
+!>              max_force_change, squeeze_force_change
 !>
 !> Units: lengths mm, stresses MPa, forces per unit width N/mm; penalty is
 !> k h / E, friction_eps is in units of h. Text values must be quoted.
@@ -112,8 +112,8 @@ module deck
       real(dp) :: max_increment = unset               ! 0.1 h
       integer :: max_iterations = 20
       real(dp) :: tolerance = 1.0e-8_dp               ! relative residual and correction
-      real(dp) :: lock_force_change = 0.02_dp         ! target relative change of F per locking increment
-      real(dp) :: pull_force_change = 0.1_dp          ! target relative change of N per pulling increment
+      real(dp) :: max_force_change = 0.1_dp           ! target relative change of F (lock) or N (pull) per increment
+      real(dp) :: squeeze_force_change = 0.02_dp      ! the same where F rises faster than H^5 while locking
       ! resolved: the tabulated hardening curve (hardening = 'table')
       real(dp), allocatable :: curve_ep(:), curve_sigma(:)
    end type deck_type
@@ -510,10 +510,10 @@ contains
       character(len=*), intent(inout) :: msg
 
       real(dp) :: lock_depth, pull_distance, initial_increment, min_increment, &
-                  max_increment, tolerance, lock_force_change, pull_force_change
+                  max_increment, tolerance, squeeze_force_change, max_force_change
       integer :: max_iterations
       namelist /loading/ lock_depth, pull_distance, initial_increment, min_increment, &
-         max_increment, max_iterations, tolerance, lock_force_change, pull_force_change
+         max_increment, max_iterations, tolerance, squeeze_force_change, max_force_change
       character(len=echo_len) :: lines(echo_rows)
 
       lock_depth = d%lock_depth
@@ -523,8 +523,8 @@ contains
       max_increment = d%max_increment
       max_iterations = d%max_iterations
       tolerance = d%tolerance
-      lock_force_change = d%lock_force_change
-      pull_force_change = d%pull_force_change
+      squeeze_force_change = d%squeeze_force_change
+      max_force_change = d%max_force_change
       select case (action)
       case (act_read_unit)
          read (unit, nml=loading, iostat=ios, iomsg=msg)
@@ -543,8 +543,8 @@ contains
       d%max_increment = max_increment
       d%max_iterations = max_iterations
       d%tolerance = tolerance
-      d%lock_force_change = lock_force_change
-      d%pull_force_change = pull_force_change
+      d%squeeze_force_change = squeeze_force_change
+      d%max_force_change = max_force_change
    end subroutine nml_loading
 
    !> put_lines -- write namelist output lines, dropping the blank padding
@@ -1080,9 +1080,9 @@ contains
       call check_int(errs, at(p, 'loading', 'max_iterations'), d%max_iterations, lo=2)
       call check_real(errs, at(p, 'loading', 'tolerance'), d%tolerance, lo=0.0_dp, &
                       hi=1.0e-2_dp, lo_open=.true., hi_open=.true.)
-      call check_real(errs, at(p, 'loading', 'lock_force_change'), d%lock_force_change, &
+      call check_real(errs, at(p, 'loading', 'squeeze_force_change'), d%squeeze_force_change, &
                       lo=0.0_dp, hi=0.5_dp, lo_open=.true., hi_open=.true.)
-      call check_real(errs, at(p, 'loading', 'pull_force_change'), d%pull_force_change, &
+      call check_real(errs, at(p, 'loading', 'max_force_change'), d%max_force_change, &
                       lo=0.0_dp, hi=0.5_dp, lo_open=.true., hi_open=.true.)
    end subroutine validate
 
