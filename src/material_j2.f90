@@ -175,15 +175,14 @@ contains
 
       ! Plastic: backward-Euler return mapping.
       ok = sy_n > 0.0_dp .and. all(ieee_is_finite(sig_tr))
-      if (ok) call return_map(sig_tr, ep_n, sy_n, h_n, seq_tr, props, nprops, sig, dp_inc, &
-                              sy_end, h_end, ok)
+      if (ok) call return_map(sig_tr, ep_n, sy_n, h_n, seq_tr, props, nprops, sig, seq, &
+                              dp_inc, sy_end, h_end, ok)
       if (.not. ok) then
          ddsdde = reshape([e_ps, d12, d12, e_ps], [2, 2])
          pnewdt = min(pnewdt, pnewdt_cut)
          return
       end if
 
-      seq = hill_equivalent(sig, r_value)
       flow = hill_normal(sig, seq, r_value)
 
       ddsdde = consistent_tangent(seq, flow, dp_inc, h_end, e_mod, nu, r_value)
@@ -239,21 +238,23 @@ contains
    !> props  [in]  material constants (see umat).
    !> nprops [in]  size of props.
    !> sig    [out] end stress on the yield surface.
+   !> seq    [out] sbar of the end stress (the last iterate's, = sy_end to
+   !>              the local tolerance).
    !> dp_inc [out] equivalent plastic strain increment dp > 0.
    !> sy_end [out] sigma_y(ep_n + dp).
    !> h_end  [out] hardening modulus d sigma_y / d ebar_p at ep_n + dp.
    !> ok     [out] .false. if no convergence or a non-finite / non-positive
    !>              value appeared; sig, dp_inc, h_end are then undefined.
-   pure subroutine return_map(sig_tr, ep_n, sy_n, h_n, seq_tr, props, nprops, sig, dp_inc, &
-                              sy_end, h_end, ok)
+   pure subroutine return_map(sig_tr, ep_n, sy_n, h_n, seq_tr, props, nprops, sig, seq, &
+                              dp_inc, sy_end, h_end, ok)
       integer, intent(in) :: nprops
       real(dp), intent(in) :: sig_tr(2), ep_n, sy_n, h_n, seq_tr
       real(dp), intent(in) :: props(nprops)
-      real(dp), intent(out) :: sig(2), dp_inc, sy_end, h_end
+      real(dp), intent(out) :: sig(2), seq, dp_inc, sy_end, h_end
       logical, intent(out) :: ok
 
       real(dp) :: e_mod, nu, r, k_s, k_t, k_eff, a_s, a_t, s_tr, t_tr
-      real(dp) :: gam, gam_lo, gam_hi, gam_new, q_s, q_t, seq, dseq, g, dg
+      real(dp) :: gam, gam_lo, gam_hi, gam_new, q_s, q_t, dseq, g, dg
       integer :: iter
 
       e_mod = props(1)
