@@ -260,6 +260,7 @@ contains
       real(dp) :: e_mod, nu, r, k_s, k_t, k_eff, a_s, a_t, s_tr, t_tr
       real(dp) :: gam, gam_lo, gam_hi, gam_new, q_s, q_t, dseq, g, dg
       integer :: iter
+      logical :: last_step
 
       e_mod = props(1)
       nu = props(2)
@@ -281,10 +282,20 @@ contains
       dp_inc = 0.0_dp
       sy_end = sy_n
       h_end = h_n
+      last_step = .false.
       do iter = 1, max_newton
          q_s = 1.0_dp/(1.0_dp + gam*k_s)
          q_t = 1.0_dp/(1.0_dp + gam*k_t)
          seq = sqrt(0.5_dp*(a_s*q_s**2 + a_t*q_t**2))
+         if (last_step) then
+            ! sigma_y carried to the new point by Taylor's formula (error
+            ! H'' d^2/2 with d < 1e-7 sigma_y/H': some 1e-20 relative; H' is
+            ! that of a point within d of ep_n + dp)
+            sy_end = sy_end + h_end*(gam*seq - dp_inc)
+            dp_inc = gam*seq
+            ok = .true.
+            exit
+         end if
          dp_inc = gam*seq
          if (iter > 1) call flow_stress(ep_n + dp_inc, props, nprops, sy_end, h_end)
          g = seq - sy_end
@@ -317,21 +328,11 @@ contains
          ! tabulated curve).
          if (.not. (gam_new > gam_lo .and. gam_new < gam_hi)) then
             gam_new = 0.5_dp*(gam_lo + gam_hi)
-         else if (abs(g) <= tol_taylor*sy_end) then
+         else
             ! A Newton step from |g| <= tol_taylor sigma_y leaves a residual
-            ! of order (g/sigma_y)^2 sigma_y < tol_newton sigma_y: take it
-            ! without evaluating the law once more, with sigma_y and H'
-            ! carried to the new point by Taylor's formula (the error of
-            ! sigma_y is H'' d^2/2, some 1e-20 relative; H' is that of a
-            ! point within d = 1e-7 of ep_n + dp).
-            gam = gam_new
-            q_s = 1.0_dp/(1.0_dp + gam*k_s)
-            q_t = 1.0_dp/(1.0_dp + gam*k_t)
-            seq = sqrt(0.5_dp*(a_s*q_s**2 + a_t*q_t**2))
-            sy_end = sy_end + h_end*(gam*seq - dp_inc)
-            dp_inc = gam*seq
-            ok = .true.
-            exit
+            ! of order (g/sigma_y)^2 sigma_y < tol_newton sigma_y: it is the
+            ! last one, and needs no further hardening-law call.
+            last_step = abs(g) <= tol_taylor*sy_end
          end if
          gam = gam_new
       end do
