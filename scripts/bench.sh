@@ -58,6 +58,8 @@ markdown=0
 decks=()
 
 while (($# > 0)); do
+    # --option=value is read as --option value
+    if [[ $1 == --*=* ]]; then set -- "${1%%=*}" "${1#*=}" "${@:2}"; fi
     case $1 in
         -n)
             (($# >= 2)) || die "-n needs a number"
@@ -73,18 +75,10 @@ while (($# > 0)); do
             build_dir=$2
             shift 2
             ;;
-        --build-dir=*)
-            build_dir=${1#*=}
-            shift
-            ;;
         --fflags)
             (($# >= 2)) || die "--fflags needs a value"
             fflags=$2
             shift 2
-            ;;
-        --fflags=*)
-            fflags=${1#*=}
-            shift
             ;;
         --no-build)
             do_build=0
@@ -94,10 +88,6 @@ while (($# > 0)); do
             (($# >= 2)) || die "--keep needs a directory"
             keep_dir=$2
             shift 2
-            ;;
-        --keep=*)
-            keep_dir=${1#*=}
-            shift
             ;;
         --markdown)
             markdown=1

@@ -73,6 +73,8 @@ do_run=1
 markdown=0
 
 while (($# > 0)); do
+    # --option=value is read as --option value
+    if [[ $1 == --*=* ]]; then set -- "${1%%=*}" "${1#*=}" "${@:2}"; fi
     case $1 in
         -j)
             (($# >= 2)) || die "-j needs a number"
@@ -88,27 +90,15 @@ while (($# > 0)); do
             deck_list=$2
             shift 2
             ;;
-        --decks=*)
-            deck_list=${1#*=}
-            shift
-            ;;
         -o | --output)
             (($# >= 2)) || die "$1 needs a directory"
             outroot=$2
             shift 2
             ;;
-        --output=*)
-            outroot=${1#*=}
-            shift
-            ;;
         --bin)
             (($# >= 2)) || die "--bin needs a path"
             bin=$2
             shift 2
-            ;;
-        --bin=*)
-            bin=${1#*=}
-            shift
             ;;
         --no-build)
             do_build=0

@@ -70,6 +70,8 @@ collect=''
 args=()
 
 while (($# > 0)); do
+    # --option=value is read as --option value
+    if [[ $1 == --*=* ]]; then set -- "${1%%=*}" "${1#*=}" "${@:2}"; fi
     case $1 in
         -j)
             (($# >= 2)) || die "-j needs a number"
@@ -85,18 +87,10 @@ while (($# > 0)); do
             outdir=$2
             shift 2
             ;;
-        --output=*)
-            outdir=${1#*=}
-            shift
-            ;;
         --bin)
             (($# >= 2)) || die "--bin needs a path"
             bin=$2
             shift 2
-            ;;
-        --bin=*)
-            bin=${1#*=}
-            shift
             ;;
         --no-build)
             do_build=0
@@ -110,10 +104,6 @@ while (($# > 0)); do
             (($# >= 2)) || die "--collect needs the sweep folder"
             collect=$2
             shift 2
-            ;;
-        --collect=*)
-            collect=${1#*=}
-            shift
             ;;
         -h | --help)
             usage

@@ -84,20 +84,21 @@ fi
 # The small decks
 # ---------------------------------------------------------------------------
 mkdir -p "$tmp/paper" "$tmp/bad" || exit 2
-beadb_tools="   bead = 'rectangular'
+# bead B on a 40-element sheet; each deck closes &tools itself
+beadb_sheet_tools="&sheet
+   thickness = 0.762
+   length = 45.72
+   n_elements = 40
+/
+&tools
+   bead = 'rectangular'
    r1 = 3.55092, r2 = 3.55092, b1 = 9.906, b2 = 13.95984
    h1 = 0.0, h2 = 4.31292"
 cat >"$tmp/paper/fig6_beadB_steel.nml" <<EOF
 &control
    title = 'test: bead B, steel, clamped, 40 elements, pulled 1h'
 /
-&sheet
-   thickness = 0.762
-   length = 45.72
-   n_elements = 40
-/
-&tools
-$beadb_tools
+$beadb_sheet_tools
    friction = 0.1
 /
 &loading
@@ -108,13 +109,7 @@ cat >"$tmp/paper/fig7c_beadB_steel_mu0.nml" <<EOF
 &control
    title = 'test: bead B, steel, clamped, 40 elements, lock only'
 /
-&sheet
-   thickness = 0.762
-   length = 45.72
-   n_elements = 40
-/
-&tools
-$beadb_tools
+$beadb_sheet_tools
 /
 &loading
    pull_distance = 0.0
