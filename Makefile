@@ -19,7 +19,8 @@ endif
 AR ?= ar
 PYTHON ?= python3
 
-RELEASE_FFLAGS := -std=f2008 -fimplicit-none -Wall -Wextra -Wimplicit-interface -O2 -g
+RELEASE_FFLAGS := -std=f2008 -fimplicit-none -Wall -Wextra -Wimplicit-interface -O2 -g \
+                  -fvect-cost-model=dynamic -fno-trapping-math -fstack-arrays
 CHECK_FFLAGS ?= -std=f2008 -fimplicit-none -Wall -Wextra -Wimplicit-interface \
                 -O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace \
                 -finit-real=snan

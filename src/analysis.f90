@@ -403,8 +403,8 @@ contains
       do e = 1, m%n_el
          do ig = 1, n_gauss
             dv = gauss_wt(ig)*(m%x(e + 1) - m%x(e))
-            energy(1) = energy(1) + dv*dot_product(m%wz, s%hn(ih_sse, :, ig, e))
-            energy(2) = energy(2) + dv*dot_product(m%wz, s%hn(ih_spd, :, ig, e))
+            energy(1) = energy(1) + dv*dot_product(m%wz, s%hn(:, ih_sse, ig, e))
+            energy(2) = energy(2) + dv*dot_product(m%wz, s%hn(:, ih_spd, ig, e))
             if (m%has_tools) then
                do it = 1, 2
                   energy(3) = energy(3) + dv*penalty_energy(m%penalty, m%contact_smoothing, &

@@ -44,7 +44,7 @@ contains
    !>  ul     [in]  element dofs (trial state)
    !>  wz     [in]  Simpson weights through the thickness
    !>  props  [in]  material constants
-   !>  hn     [in]  converged history (n_hist, npt, n_gauss)
+   !>  hn     [in]  converged history (npt, n_hist, n_gauss)
    !>  h1     [out] trial history
    !>  re     [out] internal force vector (8)
    !>  ke     [out] tangent (8, 8)

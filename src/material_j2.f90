@@ -35,7 +35,7 @@ module material_j2
    private
 
    public :: n_statev, n_props_fixed, law_swift, law_voce, law_table, max_load_strain
-   public :: umat, flow_stress, hill_equivalent, check_props, read_curve_file
+   public :: umat, umat_block, flow_stress, hill_equivalent, check_props, read_curve_file
 
    !> number of state variables umat needs
    integer, parameter :: n_statev = 6
@@ -72,7 +72,8 @@ contains
    !>   n = d sbar / d sigma = P sigma / sbar,  P = [[1, -r], [-r, 1]],
    !>   r = R/(1+R)
    !> (DESIGN §4).  The width strain increment dstran(2) is honoured as
-   !> given (the section passes 0: plane strain).
+   !> given (the section passes 0: plane strain).  One material point;
+   !> the work is done by umat_block with a block of one.
    !>
    !> stress  [in,out] Kirchhoff stress (sigma11, sigma33): start of the
    !>                  increment on entry, end on exit.
@@ -125,14 +126,71 @@ contains
       real(dp), intent(in) :: props(nprops)
       real(dp), intent(inout) :: pnewdt
 
-      real(dp) :: e_mod, nu, r_value, e_ps, d12
-      real(dp) :: sig_tr(2), sig(2), dsig(2), flow(2), dflow(2)
-      real(dp) :: ep_n, sy_n, h_n, seq_tr, seq, dp_inc, sy_end, h_end, denom
-      logical :: ok
+      real(dp) :: b_stress(1, 2), b_statev(1, nstatv), b_ddsdde(1, 2, 2), b_sse(1), b_spd(1)
+      real(dp) :: b_dstran(1, 2)
 
       ! stran is not needed (see header); the associate marks it as read.
       associate (unused => stran)
       end associate
+
+      b_stress(1, :) = stress
+      b_statev(1, :) = statev
+      b_sse(1) = sse
+      b_spd(1) = spd
+      b_dstran(1, :) = dstran
+      call umat_block(1, b_stress, b_statev, b_ddsdde, b_sse, b_spd, b_dstran, props, nprops, &
+                      nstatv, pnewdt)
+      stress = b_stress(1, :)
+      statev = b_statev(1, :)
+      ddsdde = b_ddsdde(1, :, :)
+      sse = b_sse(1)
+      spd = b_spd(1)
+   end subroutine umat
+
+   !> UMAT_BLOCK: the stress update of umat for a block of material points
+   !> at once, the block index first (the layout of Abaqus/Explicit's VUMAT).
+   !>
+   !> The points of a block are independent, so every step is a loop over
+   !> the block that the compiler can vectorize (libmvec's pow, log, exp):
+   !> the elastic predictor of all points, then the return mapping of the
+   !> points that yield, packed together (return_map_block), then the end
+   !> states.  Point k gets exactly what umat would give it.
+   !>
+   !> nblock  [in]     number of material points, >= 1.
+   !> stress  [in,out] (nblock, 2) Kirchhoff stress (sigma11, sigma33) per
+   !>                  point, start of the increment on entry, end on exit.
+   !> statev  [in,out] (nblock, nstatv) state variables per point (see umat).
+   !> ddsdde  [out]    (nblock, 2, 2) consistent tangent per point.
+   !> sse     [in,out] (nblock) elastic strain energy density (see umat).
+   !> spd     [in,out] (nblock) plastic dissipation density (see umat).
+   !> dstran  [in]     (nblock, 2) log strain increment (deps11, deps33).
+   !> props   [in]     material constants, shared by the block (see umat).
+   !> nprops  [in]     size of props.
+   !> nstatv  [in]     second extent of statev.
+   !> pnewdt  [in,out] as for umat; if the return mapping fails at any point,
+   !>                  pnewdt = min(pnewdt, 0.5) and stress, statev, sse, spd
+   !>                  of the whole block are returned unchanged (ddsdde = D).
+   pure subroutine umat_block(nblock, stress, statev, ddsdde, sse, spd, dstran, props, &
+                              nprops, nstatv, pnewdt)
+      integer, intent(in) :: nblock, nprops, nstatv
+      real(dp), intent(inout) :: stress(nblock, 2)
+      real(dp), intent(inout) :: statev(nblock, nstatv)
+      real(dp), intent(out) :: ddsdde(nblock, 2, 2)
+      real(dp), intent(inout) :: sse(nblock)
+      real(dp), intent(inout) :: spd(nblock)
+      real(dp), intent(in) :: dstran(nblock, 2)
+      real(dp), intent(in) :: props(nprops)
+      real(dp), intent(inout) :: pnewdt
+
+      real(dp) :: e_mod, nu, r_value, r, e_ps, d12, hill_a, hill_b
+      real(dp), dimension(nblock) :: sig_tr1, sig_tr2, sy_n, h_n, seq_tr
+      ! packed plastic points (index j; idx(j) is the point of the block)
+      integer :: idx(nblock), np, j, k
+      real(dp), dimension(nblock) :: s_tr, t_tr, ep_n, sy_p, h_p, seq_p, q_s, q_t, seq, &
+                                     dp_inc, sy_end, h_end, sig1, sig2, c11, c12, c22, ct11, &
+                                     eps22, sse_p, spd_p, sig_n1, sig_n2
+      real(dp) :: f1, f2, a11, a12, a22, det, x11, x12, x22, xn1, xn2, den, dsig1, dsig2
+      logical :: ok
 
       if (.not. sizes_ok(props, nprops, nstatv)) then
          ddsdde = 0.0_dp
@@ -143,80 +201,164 @@ contains
       e_mod = props(1)
       nu = props(2)
       r_value = props(3)
+      r = r_value/(1.0_dp + r_value)
       e_ps = e_mod/(1.0_dp - nu**2)
       d12 = e_ps*nu
+      ! sbar^2 = (hill_a (s11 + s33)^2 + hill_b (s11 - s33)^2), see hill_equivalent
+      hill_a = 1.0_dp/(2.0_dp*(1.0_dp + r_value))
+      hill_b = (1.0_dp + 2.0_dp*r_value)*hill_a
 
-      ! Elastic predictor.
-      sig_tr(1) = stress(1) + e_ps*dstran(1) + d12*dstran(2)
-      sig_tr(2) = stress(2) + d12*dstran(1) + e_ps*dstran(2)
-      ep_n = statev(1)
-      if (statev(5) > 0.0_dp) then
-         sy_n = statev(5)
-         h_n = statev(6)
-      else
-         call flow_stress(ep_n, props, nprops, sy_n, h_n)
-      end if
-      seq_tr = hill_equivalent(sig_tr, r_value)
+      ! Elastic predictor; the flow stress comes from the cache statev(5:6),
+      ! which a virgin point (statev(5) <= 0) has not filled yet.
+      do k = 1, nblock
+         sig_tr1(k) = stress(k, 1) + e_ps*dstran(k, 1) + d12*dstran(k, 2)
+         sig_tr2(k) = stress(k, 2) + d12*dstran(k, 1) + e_ps*dstran(k, 2)
+         seq_tr(k) = sqrt(hill_a*(sig_tr1(k) + sig_tr2(k))**2 + hill_b*(sig_tr1(k) - sig_tr2(k))**2)
+         sy_n(k) = statev(k, 5)
+         h_n(k) = statev(k, 6)
+      end do
+      do k = 1, nblock
+         if (.not. sy_n(k) > 0.0_dp) call flow_stress(statev(k, 1), props, nprops, sy_n(k), h_n(k))
+      end do
 
-      if (seq_tr <= (1.0_dp + tol_yield)*sy_n) then
-         ! Elastic step (also elastic unloading): cheap early return.
-         dsig = sig_tr - stress
-         ! Thickness strain: plane stress sigma22 = 0 gives
-         ! d eps22 = -(nu/E)(d s11 + d s33) (DESIGN §4, no plastic part).
-         statev(2) = statev(2) - nu/e_mod*(dsig(1) + dsig(2))
-         stress = sig_tr
-         statev(3) = stress(2)
-         statev(4) = e_ps
-         statev(5) = sy_n
-         statev(6) = h_n
-         sse = elastic_energy(stress, e_mod, nu)
-         ddsdde(1, 1) = e_ps
-         ddsdde(2, 1) = d12
-         ddsdde(1, 2) = d12
-         ddsdde(2, 2) = e_ps
-         return
-      end if
-
-      ! Plastic: backward-Euler return mapping.
-      ok = sy_n > 0.0_dp .and. all(ieee_is_finite(sig_tr))
-      if (ok) call return_map(sig_tr, ep_n, sy_n, h_n, seq_tr, props, nprops, sig, seq, &
-                              dp_inc, sy_end, h_end, ok)
+      ! Points whose trial state lies outside the yield surface.  A trial
+      ! state with sbar_trial <= (1 + tol_yield) sigma_y is elastic (also
+      ! elastic unloading).
+      np = 0
+      do k = 1, nblock
+         if (seq_tr(k) > (1.0_dp + tol_yield)*sy_n(k)) then
+            np = np + 1
+            idx(np) = k
+         end if
+      end do
+      ok = .true.
+      do j = 1, np
+         k = idx(j)
+         s_tr(j) = sig_tr1(k) + sig_tr2(k)
+         t_tr(j) = sig_tr1(k) - sig_tr2(k)
+         ep_n(j) = statev(k, 1)
+         sig_n1(j) = stress(k, 1)
+         sig_n2(j) = stress(k, 2)
+         eps22(j) = statev(k, 2)
+         spd_p(j) = spd(k)
+         sy_p(j) = sy_n(k)
+         h_p(j) = h_n(k)
+         seq_p(j) = seq_tr(k)
+         ok = ok .and. sy_n(k) > 0.0_dp .and. ieee_is_finite(sig_tr1(k)) .and. &
+              ieee_is_finite(sig_tr2(k))
+      end do
+      if (ok .and. np > 0) call return_map_block(np, s_tr, t_tr, ep_n, sy_p, h_p, seq_p, props, &
+                                                 nprops, q_s, q_t, seq, dp_inc, sy_end, h_end, ok)
       if (.not. ok) then
-         ddsdde = reshape([e_ps, d12, d12, e_ps], [2, 2])
+         ddsdde(:, 1, 1) = e_ps
+         ddsdde(:, 2, 1) = d12
+         ddsdde(:, 1, 2) = d12
+         ddsdde(:, 2, 2) = e_ps
          pnewdt = min(pnewdt, pnewdt_cut)
          return
       end if
 
-      flow = hill_normal(sig, seq, r_value)
+      ! End states of the plastic points, packed.
+      do j = 1, np
+         sig1(j) = 0.5_dp*(s_tr(j)*q_s(j) + t_tr(j)*q_t(j))
+         sig2(j) = 0.5_dp*(s_tr(j)*q_s(j) - t_tr(j)*q_t(j))
+         ! flow direction n = P sigma / sbar (hill_normal)
+         f1 = (sig1(j) - r*sig2(j))/seq(j)
+         f2 = (sig2(j) - r*sig1(j))/seq(j)
+         ! Consistent (algorithmic) tangent.  Linearising the converged
+         ! local system in strain form,
+         !   C (sigma - sigma_tr) + dp n(sigma) = 0,  n . d sigma = H' d dp,
+         ! with C = D^-1 and d n / d sigma = (P - n n^T)/sbar, gives
+         !   d sigma = Xi (d deps - d dp n),  Xi = (C + dp (P - n n^T)/sbar)^-1,
+         !   d sigma / d deps = Xi - (Xi n)(Xi n)^T / (n^T Xi n + H'),
+         ! the Schur complement of the local Jacobian; symmetric, and equal
+         ! to the continuum tangent (A.1) when dp -> 0.  A = Xi^-1 is
+         ! symmetric positive definite (C is, and P - n n^T is the Hessian
+         ! of the convex sbar), so the explicit 2x2 inverse is safe.
+         a11 = 1.0_dp/e_mod + dp_inc(j)*(1.0_dp - f1**2)/seq(j)
+         a22 = 1.0_dp/e_mod + dp_inc(j)*(1.0_dp - f2**2)/seq(j)
+         a12 = -nu/e_mod + dp_inc(j)*(-r - f1*f2)/seq(j)
+         det = a11*a22 - a12*a12
+         x11 = a22/det
+         x22 = a11/det
+         x12 = -a12/det
+         xn1 = x11*f1 + x12*f2
+         xn2 = x12*f1 + x22*f2
+         den = f1*xn1 + f2*xn2 + h_end(j)
+         c11(j) = x11 - xn1*xn1/den
+         c12(j) = x12 - xn1*xn2/den
+         c22(j) = x22 - xn2*xn2/den
+         ! Continuum tangent (A.1) with alpha = 1, (1,1) entry (eps33 fixed):
+         ! D - (D n)(D n)^T / (n^T D n + H').
+         xn1 = e_ps*f1 + d12*f2
+         xn2 = d12*f1 + e_ps*f2
+         ct11(j) = e_ps - xn1**2/(f1*xn1 + f2*xn2 + h_end(j))
+         ! Thickness strain, DESIGN §4: elastic part from sigma22 = 0, plastic
+         ! part from plastic incompressibility of (A.3):
+         ! d eps22 = -(nu/E)(d s11 + d s33) - d eps11p - d eps33p.
+         dsig1 = sig1(j) - sig_n1(j)
+         dsig2 = sig2(j) - sig_n2(j)
+         eps22(j) = eps22(j) - nu/e_mod*(dsig1 + dsig2) - dp_inc(j)*(f1 + f2)
+         sse_p(j) = elastic_energy([sig1(j), sig2(j)], e_mod, nu)
+      end do
+      ! Dissipation: on the yield surface sigma : d eps_p = sbar d ep =
+      ! sigma_y(ep) d ep, so the increment dissipates W(ep_n + dp) - W(ep_n),
+      ! W the integral of the hardening curve, exact for any increment size.
+      do j = 1, np
+         spd_p(j) = spd_p(j) + plastic_work(ep_n(j) + dp_inc(j), sy_end(j), props, nprops) &
+                    - plastic_work(ep_n(j), sy_p(j), props, nprops)
+      end do
+      do j = 1, np
+         if (.not. (ieee_is_finite(sig1(j)) .and. ieee_is_finite(sig2(j)) .and. dp_inc(j) > 0.0_dp)) &
+            ok = .false.
+      end do
+      if (.not. ok) then
+         ddsdde(:, 1, 1) = e_ps
+         ddsdde(:, 2, 1) = d12
+         ddsdde(:, 1, 2) = d12
+         ddsdde(:, 2, 2) = e_ps
+         pnewdt = min(pnewdt, pnewdt_cut)
+         return
+      end if
 
-      ddsdde = consistent_tangent(seq, flow, dp_inc, h_end, e_mod, nu, r_value)
+      ! Every point as if elastic (the plastic ones are overwritten below).
+      ! Thickness strain: plane stress sigma22 = 0 gives
+      ! d eps22 = -(nu/E)(d s11 + d s33) (DESIGN §4, no plastic part).
+      do k = 1, nblock
+         statev(k, 2) = statev(k, 2) - nu/e_mod*(sig_tr1(k) - stress(k, 1) + sig_tr2(k) - stress(k, 2))
+         stress(k, 1) = sig_tr1(k)
+         stress(k, 2) = sig_tr2(k)
+         statev(k, 3) = sig_tr2(k)
+         statev(k, 4) = e_ps
+         statev(k, 5) = sy_n(k)
+         statev(k, 6) = h_n(k)
+         sse(k) = elastic_energy([sig_tr1(k), sig_tr2(k)], e_mod, nu)
+         ddsdde(k, 1, 1) = e_ps
+         ddsdde(k, 2, 1) = d12
+         ddsdde(k, 1, 2) = d12
+         ddsdde(k, 2, 2) = e_ps
+      end do
+      do j = 1, np
+         k = idx(j)
+         stress(k, 1) = sig1(j)
+         stress(k, 2) = sig2(j)
+         statev(k, 1) = ep_n(j) + dp_inc(j)
+         statev(k, 2) = eps22(j)
+         statev(k, 3) = sig2(j)
+         statev(k, 4) = ct11(j)
+         statev(k, 5) = sy_end(j)
+         statev(k, 6) = h_end(j)
+         sse(k) = sse_p(j)
+         spd(k) = spd_p(j)
+         ddsdde(k, 1, 1) = c11(j)
+         ddsdde(k, 2, 1) = c12(j)
+         ddsdde(k, 1, 2) = c12(j)
+         ddsdde(k, 2, 2) = c22(j)
+      end do
+   end subroutine umat_block
 
-      ! Continuum tangent (A.1) with alpha = 1, (1,1) entry (eps33 fixed):
-      ! D - (D n)(D n)^T / (n^T D n + H').
-      dflow(1) = e_ps*flow(1) + d12*flow(2)
-      dflow(2) = d12*flow(1) + e_ps*flow(2)
-      denom = dot_product(flow, dflow) + h_end
-      statev(4) = e_ps - dflow(1)**2/denom
-
-      ! Thickness strain, DESIGN §4: elastic part from sigma22 = 0, plastic
-      ! part from plastic incompressibility of (A.3):
-      ! d eps22 = -(nu/E)(d s11 + d s33) - d eps11p - d eps33p.
-      dsig = sig - stress
-      statev(2) = statev(2) - nu/e_mod*(dsig(1) + dsig(2)) - dp_inc*(flow(1) + flow(2))
-      statev(1) = ep_n + dp_inc
-      statev(5) = sy_end
-      statev(6) = h_end
-      stress = sig
-      statev(3) = stress(2)
-      sse = elastic_energy(stress, e_mod, nu)
-      ! Dissipation: on the yield surface sigma : d eps_p = sbar d ep = sigma_y(ep) d ep,
-      ! so the increment dissipates W(ep_n + dp) - W(ep_n), W the integral of
-      ! the hardening curve, exact for any increment size.
-      spd = spd + plastic_work(ep_n + dp_inc, sy_end, props, nprops) &
-            - plastic_work(ep_n, sy_n, props, nprops)
-   end subroutine umat
-
-   !> Backward-Euler return mapping onto the Hill yield surface.
+   !> Backward-Euler return mapping onto the Hill yield surface, for n
+   !> points at once.
    !>
    !> D and P are both of the form a I + b [[0,1],[1,0]], so they share the
    !> eigenvectors (1,1) and (1,-1).  With s = s11 + s33, t = s11 - s33 and
@@ -227,163 +369,226 @@ contains
    !> which solves the stress rows of the local system
    !> [sigma - sigma_tr + dp D n; sbar - sigma_y(ep_n + dp)] = 0 exactly and
    !> leaves the scalar equation g(gamma) = sbar(gamma) - sigma_y(ep_n +
-   !> gamma sbar(gamma)) = 0.  g is strictly decreasing for a non-softening
-   !> curve, g(0) > 0, and g(gamma_hi) <= 0 at
+   !> gamma sbar(gamma)) = 0 per point.  g is strictly decreasing for a
+   !> non-softening curve, g(0) > 0, and g(gamma_hi) <= 0 at
    !> gamma_hi = (sbar_tr/sigma_y(ep_n) - 1)/min(k_s, k_t), so a Newton
    !> iteration safeguarded by bisection in [0, gamma_hi] always converges,
    !> quadratically once in the smooth part of the curve.
    !>
-   !> sig_tr [in]  trial stress (s11, s33).
-   !> ep_n   [in]  equivalent plastic strain at the start of the increment.
-   !> sy_n   [in]  sigma_y(ep_n) > 0.
-   !> h_n    [in]  d sigma_y / d ebar_p at ep_n (with sy_n: the first
+   !> Every point takes a Newton step in every pass (a converged point stays
+   !> where it is), so each pass is one vector loop and one vector call of
+   !> the hardening law.  The passes end when every point has
+   !> |g| <= tol_newton sigma_y; or, once every point has
+   !> |g| <= tol_taylor sigma_y and a Newton step inside its bracket, with
+   !> that step and sigma_y carried to it by Taylor's formula (quadratic
+   !> convergence leaves a residual near (tol_taylor)^2 sigma_y, below
+   !> tol_newton sigma_y), which needs no further law call.
+   !>
+   !> n      [in]  number of points.
+   !> s_tr, t_tr [in] (n) s and t of the trial stress.
+   !> ep_n   [in]  (n) equivalent plastic strain at the start of the increment.
+   !> sy_n   [in]  (n) sigma_y(ep_n) > 0.
+   !> h_n    [in]  (n) d sigma_y / d ebar_p at ep_n (with sy_n: the first
    !>              iterate, gamma = 0, needs no hardening-law call).
-   !> seq_tr [in]  sbar(sig_tr) > sy_n.
+   !> seq_tr [in]  (n) sbar of the trial stress, > sy_n.
    !> props  [in]  material constants (see umat).
    !> nprops [in]  size of props.
-   !> sig    [out] end stress on the yield surface.
-   !> seq    [out] sbar of the end stress (the last iterate's, = sy_end to
-   !>              the local tolerance).
-   !> dp_inc [out] equivalent plastic strain increment dp > 0.
-   !> sy_end [out] sigma_y(ep_n + dp).
-   !> h_end  [out] hardening modulus d sigma_y / d ebar_p at ep_n + dp.
-   !> ok     [out] .false. if no convergence or a non-finite / non-positive
-   !>              value appeared; sig, dp_inc, h_end are then undefined.
-   pure subroutine return_map(sig_tr, ep_n, sy_n, h_n, seq_tr, props, nprops, sig, seq, &
-                              dp_inc, sy_end, h_end, ok)
-      integer, intent(in) :: nprops
-      real(dp), intent(in) :: sig_tr(2), ep_n, sy_n, h_n, seq_tr
+   !> q_s, q_t [out] (n) 1/(1 + gamma k_s), 1/(1 + gamma k_t) at the solution:
+   !>              the end stress is s = s_tr q_s, t = t_tr q_t.
+   !> seq    [out] (n) sbar of the end stress (= sy_end to the local tolerance).
+   !> dp_inc [out] (n) equivalent plastic strain increment dp > 0.
+   !> sy_end [out] (n) sigma_y(ep_n + dp).
+   !> h_end  [out] (n) hardening modulus d sigma_y / d ebar_p at ep_n + dp.
+   !> ok     [out] .false. if a point did not converge or a non-finite /
+   !>              non-positive value appeared; the outputs are then undefined.
+   pure subroutine return_map_block(n, s_tr, t_tr, ep_n, sy_n, h_n, seq_tr, props, nprops, &
+                                    q_s, q_t, seq, dp_inc, sy_end, h_end, ok)
+      integer, intent(in) :: n, nprops
+      real(dp), intent(in) :: s_tr(n), t_tr(n), ep_n(n), sy_n(n), h_n(n), seq_tr(n)
       real(dp), intent(in) :: props(nprops)
-      real(dp), intent(out) :: sig(2), seq, dp_inc, sy_end, h_end
+      real(dp), intent(out) :: q_s(n), q_t(n), seq(n), dp_inc(n), sy_end(n), h_end(n)
       logical, intent(out) :: ok
 
-      real(dp) :: e_mod, nu, r, k_s, k_t, k_eff, a_s, a_t, s_tr, t_tr
-      real(dp) :: gam, gam_lo, gam_hi, gam_new, q_s, q_t, dseq, g, dg
-      integer :: iter
-      logical :: last_step
+      real(dp) :: e_mod, nu, r, k_s, k_t, n_far, n_out, n_bad
+      real(dp), dimension(n) :: a_s, a_t, k_eff, gam, gam_lo, gam_hi, g, ep
+      integer :: iter, j
 
       e_mod = props(1)
       nu = props(2)
       r = props(3)/(1.0_dp + props(3))
-      s_tr = sig_tr(1) + sig_tr(2)
-      t_tr = sig_tr(1) - sig_tr(2)
       k_s = e_mod*(1.0_dp - r)/(1.0_dp - nu)
       k_t = e_mod*(1.0_dp + r)/(1.0_dp + nu)
-      a_s = (1.0_dp - r)*s_tr**2
-      a_t = (1.0_dp + r)*t_tr**2
-      ! Effective decay rate of sbar at gamma = 0: sbar'(0) = -k_eff sbar_tr.
-      k_eff = (a_s*k_s + a_t*k_t)/(a_s + a_t)
-
-      gam_lo = 0.0_dp
-      gam_hi = (seq_tr/sy_n - 1.0_dp)/min(k_s, k_t)
-      gam = 0.0_dp
+      do j = 1, n
+         a_s(j) = (1.0_dp - r)*s_tr(j)**2
+         a_t(j) = (1.0_dp + r)*t_tr(j)**2
+         ! Effective decay rate of sbar at gamma = 0: sbar'(0) = -k_eff sbar_tr.
+         k_eff(j) = (a_s(j)*k_s + a_t(j)*k_t)/(a_s(j) + a_t(j))
+         gam_lo(j) = 0.0_dp
+         gam_hi(j) = (seq_tr(j)/sy_n(j) - 1.0_dp)/min(k_s, k_t)
+         gam(j) = 0.0_dp
+         q_s(j) = 1.0_dp
+         q_t(j) = 1.0_dp
+         seq(j) = seq_tr(j)
+         dp_inc(j) = 0.0_dp
+         sy_end(j) = sy_n(j)
+         h_end(j) = h_n(j)
+         g(j) = seq_tr(j) - sy_n(j)
+      end do
       ok = .false.
-      sig = sig_tr
-      dp_inc = 0.0_dp
-      sy_end = sy_n
-      h_end = h_n
-      last_step = .false.
       do iter = 1, max_newton
-         q_s = 1.0_dp/(1.0_dp + gam*k_s)
-         q_t = 1.0_dp/(1.0_dp + gam*k_t)
-         seq = sqrt(0.5_dp*(a_s*q_s**2 + a_t*q_t**2))
-         if (last_step) then
+         ! n_far: number of points not yet at |g| <= tol_newton sigma_y;
+         ! n_out: of points too far for the Taylor finish (|g| > tol_taylor
+         ! sigma_y, or a bisection step)
+         call newton_step_block(n, a_s, a_t, k_s, k_t, k_eff, q_s, q_t, seq, h_end, sy_end, g, &
+                                gam, gam_lo, gam_hi, n_far, n_out)
+         if (n_far < 0.5_dp) then
+            ok = .true.
+            exit
+         end if
+         do j = 1, n
+            q_s(j) = 1.0_dp/(1.0_dp + gam(j)*k_s)
+            q_t(j) = 1.0_dp/(1.0_dp + gam(j)*k_t)
+            seq(j) = sqrt(0.5_dp*(a_s(j)*q_s(j)**2 + a_t(j)*q_t(j)**2))
+         end do
+         if (n_out < 0.5_dp) then
             ! sigma_y carried to the new point by Taylor's formula (error
             ! H'' d^2/2 with d < 1e-7 sigma_y/H': some 1e-20 relative; H' is
             ! that of a point within d of ep_n + dp)
-            sy_end = sy_end + h_end*(gam*seq - dp_inc)
-            dp_inc = gam*seq
+            do j = 1, n
+               sy_end(j) = sy_end(j) + h_end(j)*(gam(j)*seq(j) - dp_inc(j))
+               dp_inc(j) = gam(j)*seq(j)
+            end do
             ok = .true.
             exit
          end if
-         dp_inc = gam*seq
-         if (iter > 1) call flow_stress(ep_n + dp_inc, props, nprops, sy_end, h_end)
-         g = seq - sy_end
-         if (.not. (sy_end > 0.0_dp .and. ieee_is_finite(g))) return
-         if (abs(g) <= tol_newton*sy_end) then
-            ok = .true.
-            exit
-         end if
-         if (g > 0.0_dp) then
-            gam_lo = gam
-         else
-            gam_hi = gam
-         end if
+         do j = 1, n
+            dp_inc(j) = gam(j)*seq(j)
+            ep(j) = ep_n(j) + dp_inc(j)
+         end do
+         call flow_stress_block(n, ep, props, nprops, sy_end, h_end)
+         n_bad = 0.0_dp
+         do j = 1, n
+            g(j) = seq(j) - sy_end(j)
+            n_bad = n_bad + merge(0.0_dp, 1.0_dp, sy_end(j) > 0.0_dp .and. abs(g(j)) <= huge(1.0_dp))
+         end do
+         if (n_bad > 0.5_dp) return
+      end do
+   end subroutine return_map_block
+
+   !> One safeguarded Newton step of return_map_block at every point (see
+   !> there): the bracket [gam_lo, gam_hi] is narrowed by the sign of g, then
+   !> gamma takes the Newton step on F = g (1 + gamma k_eff), or bisects
+   !> where that step leaves the bracket; a point with |g| <= tol_newton
+   !> sigma_y stays where it is.
+   !>
+   !> n              [in]  number of points.
+   !> a_s, a_t       [in]  (n) (1 - r) s_tr^2 and (1 + r) t_tr^2.
+   !> k_s, k_t       [in]  decay rates of s and t with gamma.
+   !> k_eff          [in]  (n) effective decay rate of sbar at gamma = 0.
+   !> q_s, q_t, seq  [in]  (n) 1/(1 + gamma k_s), 1/(1 + gamma k_t) and sbar at gamma.
+   !> h_end, sy_end  [in]  (n) H' and sigma_y at ep_n + gamma sbar.
+   !> g              [in]  (n) sbar - sigma_y at gamma.
+   !> gam            [in,out] (n) gamma: the current iterate in, the next out.
+   !> gam_lo, gam_hi [in,out] (n) the bracket of the root.
+   !> n_far          [out] number of points not yet at |g| <= tol_newton sigma_y.
+   !> n_out          [out] number of points too far for the Taylor finish
+   !>                      (|g| > tol_taylor sigma_y, or a bisection step).
+   !> Written for gfortran's vectorizer (with -fno-trapping-math): counts as
+   !> reals, every array read once into a scalar, and the choice between
+   !> keeping gamma and stepping as an exact 0/1 blend, not a merge.
+   pure subroutine newton_step_block(n, a_s, a_t, k_s, k_t, k_eff, q_s, q_t, seq, h_end, sy_end, &
+                                     g, gam, gam_lo, gam_hi, n_far, n_out)
+      integer, intent(in) :: n
+      real(dp), intent(in) :: a_s(n), a_t(n), k_s, k_t, k_eff(n), q_s(n), q_t(n), seq(n), h_end(n)
+      real(dp), intent(in) :: sy_end(n), g(n)
+      real(dp), intent(inout) :: gam(n), gam_lo(n), gam_hi(n)
+      real(dp), intent(out) :: n_far, n_out
+
+      real(dp) :: dseq, dg, step, gj, lo, hi, far, near
+      integer :: j
+      logical :: inside
+
+      n_far = 0.0_dp
+      n_out = 0.0_dp
+      do j = 1, n
+         ! far = 0 (keep gamma) or 1 (step); the blend below is exact
+         far = merge(0.0_dp, 1.0_dp, abs(g(j)) <= tol_newton*sy_end(j))
+         gj = gam(j)
+         lo = gam_lo(j)
+         hi = gam_hi(j)
+         lo = merge(gj, lo, g(j) > 0.0_dp)
+         hi = merge(hi, gj, g(j) > 0.0_dp)
+         gam_lo(j) = lo
+         gam_hi(j) = hi
          ! g'(gamma) = sbar' - H' (sbar + gamma sbar'),  sbar' < 0.
-         dseq = -0.5_dp*(a_s*k_s*q_s**3 + a_t*k_t*q_t**3)/seq
-         dg = dseq - h_end*(seq + gam*dseq)
+         dseq = -0.5_dp*(a_s(j)*k_s*q_s(j)**3 + a_t(j)*k_t*q_t(j)**3)/seq(j)
+         dg = dseq - h_end(j)*(seq(j) + gj*dseq)
          ! Newton on F = g (1 + gamma k_eff), same root and sign as g:
          ! sbar ~ sbar_tr/(1 + gamma k_eff) makes g strongly convex (plain
          ! Newton from gamma = 0 only halves the error per iteration for
          ! large steps), while F is nearly linear (exactly so for a
          ! perfectly plastic material when k_s = k_t).
          ! F'/(1 + gamma k_eff) = g' + g k_eff/(1 + gamma k_eff).
-         dg = dg + g*k_eff/(1.0_dp + gam*k_eff)
-         if (dg < 0.0_dp) then
-            gam_new = gam - g/dg
-         else
-            gam_new = gam_lo - 1.0_dp
-         end if
+         dg = dg + g(j)*k_eff(j)/(1.0_dp + gj*k_eff(j))
+         step = gj - g(j)/merge(dg, -1.0_dp, dg < 0.0_dp)
          ! Bisection if the Newton step leaves the bracket (kinks of a
-         ! tabulated curve).
-         if (.not. (gam_new > gam_lo .and. gam_new < gam_hi)) then
-            gam_new = 0.5_dp*(gam_lo + gam_hi)
-         else
-            ! A Newton step from |g| <= tol_taylor sigma_y leaves a residual
-            ! of order (g/sigma_y)^2 sigma_y < tol_newton sigma_y: it is the
-            ! last one, and needs no further hardening-law call.
-            last_step = abs(g) <= tol_taylor*sy_end
-         end if
-         gam = gam_new
+         ! tabulated curve).  (merge, not if: one vector loop.)
+         inside = dg < 0.0_dp .and. (step > lo) .and. (step < hi)
+         step = merge(step, 0.5_dp*(lo + hi), inside)
+         gam(j) = gj*(1.0_dp - far) + step*far
+         ! near = 1: a Newton step from |g| <= tol_taylor sigma_y
+         near = merge(1.0_dp, 0.0_dp, inside)*merge(1.0_dp, 0.0_dp, abs(g(j)) <= tol_taylor*sy_end(j))
+         n_far = n_far + far
+         n_out = n_out + far*(1.0_dp - near)
       end do
-      if (.not. ok) return
+   end subroutine newton_step_block
 
-      sig(1) = 0.5_dp*(s_tr*q_s + t_tr*q_t)
-      sig(2) = 0.5_dp*(s_tr*q_s - t_tr*q_t)
-      ok = all(ieee_is_finite(sig)) .and. dp_inc > 0.0_dp
-   end subroutine return_map
-
-   !> Consistent (algorithmic) tangent of the backward-Euler update.
+   !> Flow stress and hardening modulus at n points (flow_stress, one loop
+   !> per law so that the compiler vectorizes the Swift and Voce laws).
    !>
-   !> Linearising the converged local system in strain form,
-   !>   C (sigma - sigma_tr) + dp n(sigma) = 0,  n . d sigma = H' d dp,
-   !> with C = D^-1 and d n / d sigma = (P - n n^T)/sbar, gives
-   !>   d sigma = Xi (d deps - d dp n),  Xi = (C + dp (P - n n^T)/sbar)^-1,
-   !>   d sigma / d deps = Xi - (Xi n)(Xi n)^T / (n^T Xi n + H'),
-   !> the Schur complement of the local Jacobian; symmetric, and equal to
-   !> the continuum tangent (A.1) when dp -> 0.
-   !>
-   !> seq     [in] sbar of the converged end stress, > 0.
-   !> flow    [in] n = P sig / sbar.
-   !> dp_inc  [in] equivalent plastic strain increment.
-   !> h_end   [in] H' = d sigma_y / d ebar_p at the end state.
-   !> e_mod   [in] Young's modulus E.
-   !> nu      [in] Poisson's ratio.
-   !> r_value [in] Lankford coefficient R.
-   !> Returns the 2x2 consistent tangent.
-   pure function consistent_tangent(seq, flow, dp_inc, h_end, e_mod, nu, r_value) result(ct)
-      real(dp), intent(in) :: seq, flow(2), dp_inc, h_end, e_mod, nu, r_value
-      real(dp) :: ct(2, 2)
+   !> n       [in]  number of points.
+   !> ep      [in]  (n) equivalent plastic strains (>= 0).
+   !> props   [in]  material constants (see umat).
+   !> nprops  [in]  size of props.
+   !> sigma_y [out] (n) flow stress (0 where flow_stress gives 0).
+   !> hardening_modulus [out] (n) d sigma_y / d ebar_p.
+   pure subroutine flow_stress_block(n, ep, props, nprops, sigma_y, hardening_modulus)
+      integer, intent(in) :: n, nprops
+      real(dp), intent(in) :: ep(n)
+      real(dp), intent(in) :: props(nprops)
+      real(dp), intent(out) :: sigma_y(n), hardening_modulus(n)
 
-      real(dp) :: r, a(2, 2), xi(2, 2), xin(2), det
+      real(dp) :: base, ex
+      integer :: j
 
-      r = r_value/(1.0_dp + r_value)
-      ! A = C + dp (P - n n^T)/sbar, C = (1/E) [[1, -nu], [-nu, 1]].
-      a(1, 1) = 1.0_dp/e_mod + dp_inc*(1.0_dp - flow(1)**2)/seq
-      a(2, 2) = 1.0_dp/e_mod + dp_inc*(1.0_dp - flow(2)**2)/seq
-      a(1, 2) = -nu/e_mod + dp_inc*(-r - flow(1)*flow(2))/seq
-      a(2, 1) = a(1, 2)
-      ! A is symmetric positive definite (C is, and P - n n^T is the Hessian
-      ! of the convex sbar), so the explicit 2x2 inverse is safe.
-      det = a(1, 1)*a(2, 2) - a(1, 2)*a(2, 1)
-      xi(1, 1) = a(2, 2)/det
-      xi(2, 2) = a(1, 1)/det
-      xi(1, 2) = -a(1, 2)/det
-      xi(2, 1) = xi(1, 2)
-      xin = matmul(xi, flow)
-      ct(:, 1) = xi(:, 1) - xin*xin(1)/(dot_product(flow, xin) + h_end)
-      ct(:, 2) = xi(:, 2) - xin*xin(2)/(dot_product(flow, xin) + h_end)
-   end function consistent_tangent
+      if (nprops < n_props_fixed + 3) then
+         sigma_y = 0.0_dp
+         hardening_modulus = 0.0_dp
+         return
+      end if
+      select case (int(props(4)))
+      case (law_swift)
+         ! sigma_y = K (eps0 + ep)^n; 0 (a failure for umat) where
+         ! eps0 + ep <= 0, as in flow_stress
+         do j = 1, n
+            base = max(props(6) + ep(j), tiny(1.0_dp))
+            sigma_y(j) = props(5)*base**props(7)
+            sigma_y(j) = merge(sigma_y(j), 0.0_dp, props(6) + ep(j) > 0.0_dp)
+            hardening_modulus(j) = props(7)*sigma_y(j)/base
+         end do
+      case (law_voce)
+         ! sigma_y = sigma0 + Q (1 - exp(-b ep))
+         do j = 1, n
+            ex = exp(-props(7)*ep(j))
+            sigma_y(j) = props(5) + props(6)*(1.0_dp - ex)
+            hardening_modulus(j) = props(6)*props(7)*ex
+         end do
+      case default
+         do j = 1, n
+            call flow_stress(ep(j), props, nprops, sigma_y(j), hardening_modulus(j))
+         end do
+      end select
+   end subroutine flow_stress_block
 
    !> Flow stress and hardening modulus of the uniaxial true stress -
    !> natural strain curve, sigma_y(ebar_p) and d sigma_y / d ebar_p.
@@ -509,24 +714,6 @@ contains
       seq = sqrt(((stress(1) + stress(2))**2 + (1.0_dp + 2.0_dp*r_value)*(stress(1) - stress(2))**2) &
                  /(2.0_dp*(1.0_dp + r_value)))
    end function hill_equivalent
-
-   !> Flow direction n = d sbar / d sigma = P sigma / sbar,
-   !> P = [[1, -r], [-r, 1]], r = R/(1+R).
-   !>
-   !> sig     [in] stress (sigma11, sigma33).
-   !> seq     [in] sbar(sig) > 0.
-   !> r_value [in] Lankford coefficient R.
-   !> Returns n (2 components).
-   pure function hill_normal(sig, seq, r_value) result(flow)
-      real(dp), intent(in) :: sig(2), seq, r_value
-      real(dp) :: flow(2)
-
-      real(dp) :: r
-
-      r = r_value/(1.0_dp + r_value)
-      flow(1) = (sig(1) - r*sig(2))/seq
-      flow(2) = (sig(2) - r*sig(1))/seq
-   end function hill_normal
 
    !> Elastic strain energy density of a plane-stress state,
    !> (1/2) sigma . C sigma = (s11^2 + s33^2 - 2 nu s11 s33)/(2E).

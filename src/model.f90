@@ -45,7 +45,7 @@ module model
 
    type :: state_type
       real(dp), allocatable :: u(:), u1(:)               ! converged, trial dofs
-      real(dp), allocatable :: hn(:, :, :, :), h1(:, :, :, :) ! (n_hist, npt, n_gauss, n_el)
+      real(dp), allocatable :: hn(:, :, :, :), h1(:, :, :, :) ! (npt, n_hist, n_gauss, n_el)
       real(dp), allocatable :: cn(:, :, :, :), c1(:, :, :, :) ! (n_chist, n_gauss, n_el, 2)
       real(dp), allocatable :: gp(:, :, :)               ! (eps, rho, N, M) at Gauss points, trial
       real(dp), allocatable :: gpn(:, :, :)              ! the same, converged
@@ -89,7 +89,7 @@ contains
       type(state_type), intent(out) :: s
       integer :: e, ig
       allocate (s%u(m%n_dof), s%u1(m%n_dof))
-      allocate (s%hn(n_hist, m%npt, n_gauss, m%n_el))
+      allocate (s%hn(m%npt, n_hist, n_gauss, m%n_el))
       allocate (s%cn(n_chist, n_gauss, m%n_el, 2))
       allocate (s%gp(4, n_gauss, m%n_el), s%gpn(4, n_gauss, m%n_el), s%indicator(n_gauss, m%n_el))
       s%u = 0.0_dp

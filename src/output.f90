@@ -127,10 +127,10 @@ contains
             v = dot_product(nv, s%u(dofs(v_dofs)))
             w = dot_product(nv, s%u(dofs(w_dofs)))
             eps = s%gpn(1, ig, e)
-            top = s%hn(ih_strain, m%npt, ig, e)
-            bot = s%hn(ih_strain, 1, ig, e)
-            e22 = s%hn(ih_statev + 1, mid, ig, e)
-            epmax = maxval(s%hn(ih_statev, :, ig, e))
+            top = s%hn(m%npt, ih_strain, ig, e)
+            bot = s%hn(1, ih_strain, ig, e)
+            e22 = s%hn(mid, ih_statev + 1, ig, e)
+            epmax = maxval(s%hn(:, ih_statev, ig, e))
             write (unit, fmt_row) gauss_position(m, e, ig)/h, (gauss_position(m, e, ig) + v)/h, &
                w/h, eps, log(1.0_dp + eps), top, bot, e22, epmax, s%gpn(2, ig, e)*h, &
                s%gpn(3, ig, e)/(m%youngs*h), s%gpn(4, ig, e)/(m%youngs*h*h), s%indicator(ig, e)

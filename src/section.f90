@@ -5,16 +5,18 @@
 !> §3).  Fibre stretch Lambda_k = 1 + eps + zbar_k rho; the material gets the
 !> log-strain increment ln(Lambda_k/Lambda_k,old) with the width strain held.
 !>
-!> The history of one material point is one column of hist(n_hist, npt):
-!>   hist(ih_strain)       converged fibre log strain ln Lambda_k (kept as
+!> The history of the section is hist(npt, n_hist), one row per material point
+!> (the block layout of umat_block: every station's value of one variable is
+!> contiguous):
+!>   hist(:, ih_strain)    converged fibre log strain ln Lambda_k (kept as
 !>                         a logarithm: one log per station and call)
-!>   hist(ih_zbar)         current distance from the mid-surface (lagged)
-!>   hist(ih_stress:+1)    Kirchhoff stress (tau_11, tau_33)
-!>   hist(ih_sse), (ih_spd) elastic energy and plastic dissipation densities
-!>   hist(ih_statev:)      the material's state variables (material_j2)
+!>   hist(:, ih_zbar)      current distance from the mid-surface (lagged)
+!>   hist(:, ih_stress:+1) Kirchhoff stress (tau_11, tau_33)
+!>   hist(:, ih_sse), (:, ih_spd) elastic energy and plastic dissipation densities
+!>   hist(:, ih_statev:)   the material's state variables (material_j2)
 module section
    use kinds, only: dp
-   use material_j2, only: umat, n_statev
+   use material_j2, only: umat_block, n_statev
    implicit none
    private
    public :: n_hist, ih_strain, ih_zbar, ih_stress, ih_sse, ih_spd, ih_statev, &
@@ -28,13 +30,13 @@ contains
 
    !> SECTION_INIT: history of an undeformed, stress-free section.
    !>  z     [in]  reference station positions
-   !>  hist  [out] history columns, one per station
+   !>  hist  [out] history (npt, n_hist), one row per station
    pure subroutine section_init(z, hist)
       real(dp), intent(in) :: z(:)
       real(dp), intent(out) :: hist(:, :)
       hist = 0.0_dp
-      hist(ih_strain, :) = 0.0_dp
-      hist(ih_zbar, :) = z
+      hist(:, ih_strain) = 0.0_dp
+      hist(:, ih_zbar) = z
    end subroutine section_init
 
    !> SECTION_RESPONSE: section forces and tangent for given (eps, rho), (2.16)-(2.17).
@@ -51,32 +53,37 @@ contains
       real(dp), intent(in) :: eps, rho, wz(:), props(:), hn(:, :)
       real(dp), intent(out) :: h1(:, :), force, moment, c(2, 2)
       real(dp), intent(inout) :: pnewdt
-      integer :: k
-      real(dp) :: lam, log_lam, zb, tau, stiff, dstran(2), stran(2), ddsdde(2, 2), wl, wl2
+      integer :: k, npt
+      real(dp) :: lam(size(wz)), log_lam(size(wz)), dstran(size(wz), 2), ddsdde(size(wz), 2, 2)
+      real(dp) :: zb, tau, wl, wl2
+      npt = size(wz)
       force = 0.0_dp
       moment = 0.0_dp
       c = 0.0_dp
+      do k = 1, npt
+         lam(k) = 1.0_dp + eps + hn(k, ih_zbar)*rho
+      end do
+      if (any(lam <= 0.05_dp)) then
+         ! a fibre shortened to nothing: the increment is far too large
+         pnewdt = min(pnewdt, 0.25_dp)
+         return
+      end if
+      do k = 1, npt
+         log_lam(k) = log(lam(k))
+         dstran(k, 1) = log_lam(k) - hn(k, ih_strain)
+         dstran(k, 2) = 0.0_dp
+      end do
       h1 = hn
-      do k = 1, size(wz)
-         zb = hn(ih_zbar, k)
-         lam = 1.0_dp + eps + zb*rho
-         if (lam <= 0.05_dp) then
-            ! a fibre shortened to nothing: the increment is far too large
-            pnewdt = min(pnewdt, 0.25_dp)
-            return
-         end if
-         log_lam = log(lam)
-         stran = [hn(ih_strain, k), 0.0_dp]
-         dstran = [log_lam - hn(ih_strain, k), 0.0_dp]
-         call umat(h1(ih_stress:ih_stress + 1, k), h1(ih_statev:, k), ddsdde, &
-                   h1(ih_sse, k), h1(ih_spd, k), stran, dstran, props, size(props), &
-                   n_statev, pnewdt)
-         if (pnewdt < 1.0_dp) return
-         h1(ih_strain, k) = log_lam
-         tau = h1(ih_stress, k)
-         stiff = ddsdde(1, 1)
-         wl = wz(k)/lam
-         wl2 = wl/lam*(stiff - tau)
+      call umat_block(npt, h1(:, ih_stress:ih_stress + 1), h1(:, ih_statev:ih_statev + n_statev - 1), &
+                      ddsdde, h1(:, ih_sse), h1(:, ih_spd), dstran, props, size(props), n_statev, &
+                      pnewdt)
+      if (pnewdt < 1.0_dp) return
+      do k = 1, npt
+         h1(k, ih_strain) = log_lam(k)
+         zb = hn(k, ih_zbar)
+         tau = h1(k, ih_stress)
+         wl = wz(k)/lam(k)
+         wl2 = wl/lam(k)*(ddsdde(k, 1, 1) - tau)
          force = force + wl*tau
          moment = moment + wl*tau*zb
          c(1, 1) = c(1, 1) + wl2
@@ -105,12 +112,12 @@ contains
       real(dp) :: c11, c12, c22, lam, zb, wl2, t, tr, dt
       integer :: k, npt
       npt = size(wz)
-      t = hist(ih_zbar, npt) - hist(ih_zbar, 1)
+      t = hist(npt, ih_zbar) - hist(1, ih_zbar)
       c11 = 0.0_dp; c12 = 0.0_dp; c22 = 0.0_dp
       do k = 1, npt
-         lam = exp(hist(ih_strain, k))
-         zb = sqrt(12.0_dp)*hist(ih_zbar, k)/t
-         wl2 = wz(k)*(hist(ih_statev + 3, k) - hist(ih_stress, k))/(lam*lam)
+         lam = exp(hist(k, ih_strain))
+         zb = sqrt(12.0_dp)*hist(k, ih_zbar)/t
+         wl2 = wz(k)*(hist(k, ih_statev + 3) - hist(k, ih_stress))/(lam*lam)
          c11 = c11 + wl2
          c12 = c12 + wl2*zb
          c22 = c22 + wl2*zb*zb
@@ -126,23 +133,23 @@ contains
    !> station outward (DESIGN §3).  Called once per converged increment, so zbar
    !> is lagged one increment.
    !>  z     [in]  reference station positions (odd count, mid station at 0)
-   !>  hist  [in,out] history; row ih_zbar is rewritten
+   !>  hist  [in,out] history; column ih_zbar is rewritten
    pure subroutine section_update_zbar(z, hist)
       real(dp), intent(in) :: z(:)
       real(dp), intent(inout) :: hist(:, :)
       integer :: k, mid
       real(dp) :: g0, g1
       mid = (size(z) + 1)/2
-      hist(ih_zbar, mid) = 0.0_dp
+      hist(mid, ih_zbar) = 0.0_dp
       do k = mid + 1, size(z)
-         g0 = exp(hist(ih_statev + 1, k - 1))
-         g1 = exp(hist(ih_statev + 1, k))
-         hist(ih_zbar, k) = hist(ih_zbar, k - 1) + 0.5_dp*(g0 + g1)*(z(k) - z(k - 1))
+         g0 = exp(hist(k - 1, ih_statev + 1))
+         g1 = exp(hist(k, ih_statev + 1))
+         hist(k, ih_zbar) = hist(k - 1, ih_zbar) + 0.5_dp*(g0 + g1)*(z(k) - z(k - 1))
       end do
       do k = mid - 1, 1, -1
-         g0 = exp(hist(ih_statev + 1, k + 1))
-         g1 = exp(hist(ih_statev + 1, k))
-         hist(ih_zbar, k) = hist(ih_zbar, k + 1) + 0.5_dp*(g0 + g1)*(z(k) - z(k + 1))
+         g0 = exp(hist(k + 1, ih_statev + 1))
+         g1 = exp(hist(k, ih_statev + 1))
+         hist(k, ih_zbar) = hist(k + 1, ih_zbar) + 0.5_dp*(g0 + g1)*(z(k) - z(k + 1))
       end do
    end subroutine section_update_zbar
 end module section

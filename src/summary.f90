@@ -107,7 +107,7 @@ contains
          status = 'completed'
       end if
       call steady_force(rec, h, fsteady, steady_at, steady)
-      thinning = 1.0_dp - minval(s%hn(ih_zbar, m%npt, :, :) - s%hn(ih_zbar, 1, :, :))/h
+      thinning = 1.0_dp - minval(s%hn(m%npt, ih_zbar, :, :) - s%hn(1, ih_zbar, :, :))/h
       write (u, '(a)') '# drawbead summary: '//trim(d%title), 'status = '//trim(status)
       write (u, '(a)') 'localization_phase = '//trim(merge(rec%loc_phase, 'none    ', rec%localized))
       call write_summary_line(u, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'pull')
