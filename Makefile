@@ -8,7 +8,7 @@
 #   make clean           remove build/, build-check/, bin/ and out/
 #   make help            list the targets and variables
 #
-# Variables (override on the command line): FC, FFLAGS, CHECK_FFLAGS,
+# Variables (override on the command line): FC, FFLAGS, ARCH_FLAGS, CHECK_FFLAGS,
 # LDFLAGS, LDLIBS, DECK, PFUNIT_DIR (a pFUnit 4 install: the folder holding
 # include/PFUNIT.mk; without it the tests use tests/pfunit_lite.py).
 
@@ -19,8 +19,14 @@ endif
 AR ?= ar
 PYTHON ?= python3
 
+# Release code generation: the material loops of a section are vectorized
+# (libmvec's pow and log; -fno-trapping-math lets gfortran if-convert them),
+# automatic arrays live on the stack, and ARCH_FLAGS picks the vector width
+# of the build machine.  Give ARCH_FLAGS= for a binary that runs on any
+# machine of the architecture (e.g. a cluster whose nodes differ).
+ARCH_FLAGS ?= -march=native
 RELEASE_FFLAGS := -std=f2008 -fimplicit-none -Wall -Wextra -Wimplicit-interface -O2 -g \
-                  -fvect-cost-model=dynamic -fno-trapping-math -fstack-arrays
+                  -fvect-cost-model=dynamic -fno-trapping-math -fstack-arrays $(ARCH_FLAGS)
 CHECK_FFLAGS ?= -std=f2008 -fimplicit-none -Wall -Wextra -Wimplicit-interface \
                 -O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace \
                 -finit-real=snan

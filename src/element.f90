@@ -51,8 +51,10 @@ contains
    !>  gp     [out] per Gauss point: eps, rho, N, M
    !>  pnewdt [in,out] < 1 on return if the increment must be cut
    pure subroutine element_internal(le, ul, wz, props, hn, h1, re, ke, gp, pnewdt)
-      real(dp), intent(in) :: le, ul(8), wz(:), props(:), hn(:, :, :)
-      real(dp), intent(out) :: h1(:, :, :), re(8), ke(8, 8), gp(4, n_gauss)
+      real(dp), intent(in) :: le, ul(8), wz(:), props(:)
+      real(dp), contiguous, intent(in) :: hn(:, :, :)
+      real(dp), contiguous, intent(out) :: h1(:, :, :)
+      real(dp), intent(out) :: re(8), ke(8, 8), gp(4, n_gauss)
       real(dp), intent(inout) :: pnewdt
       real(dp) :: g(4), gm(4, 8), eps, rho, deps(4), drho(4), d2eps(4, 4), d2rho(4, 4)
       real(dp) :: force, moment, c(2, 2), beps(8), brho(8), hg(4, 4), dv

@@ -299,7 +299,7 @@ contains
          dsig1 = sig1(j) - sig_n1(j)
          dsig2 = sig2(j) - sig_n2(j)
          eps22(j) = eps22(j) - nu/e_mod*(dsig1 + dsig2) - dp_inc(j)*(f1 + f2)
-         sse_p(j) = elastic_energy([sig1(j), sig2(j)], e_mod, nu)
+         sse_p(j) = elastic_energy(sig1(j), sig2(j), e_mod, nu)
       end do
       ! Dissipation: on the yield surface sigma : d eps_p = sbar d ep =
       ! sigma_y(ep) d ep, so the increment dissipates W(ep_n + dp) - W(ep_n),
@@ -332,7 +332,7 @@ contains
          statev(k, 4) = e_ps
          statev(k, 5) = sy_n(k)
          statev(k, 6) = h_n(k)
-         sse(k) = elastic_energy([sig_tr1(k), sig_tr2(k)], e_mod, nu)
+         sse(k) = elastic_energy(sig_tr1(k), sig_tr2(k), e_mod, nu)
          ddsdde(k, 1, 1) = e_ps
          ddsdde(k, 2, 1) = d12
          ddsdde(k, 1, 2) = d12
@@ -718,14 +718,14 @@ contains
    !> Elastic strain energy density of a plane-stress state,
    !> (1/2) sigma . C sigma = (s11^2 + s33^2 - 2 nu s11 s33)/(2E).
    !>
-   !> sig   [in] stress (sigma11, sigma33).
-   !> e_mod [in] Young's modulus E.
-   !> nu    [in] Poisson's ratio.
-   pure function elastic_energy(sig, e_mod, nu) result(w)
-      real(dp), intent(in) :: sig(2), e_mod, nu
+   !> s11, s33 [in] stress components sigma11, sigma33.
+   !> e_mod    [in] Young's modulus E.
+   !> nu       [in] Poisson's ratio.
+   pure function elastic_energy(s11, s33, e_mod, nu) result(w)
+      real(dp), intent(in) :: s11, s33, e_mod, nu
       real(dp) :: w
 
-      w = (sig(1)**2 + sig(2)**2 - 2.0_dp*nu*sig(1)*sig(2))/(2.0_dp*e_mod)
+      w = (s11**2 + s33**2 - 2.0_dp*nu*s11*s33)/(2.0_dp*e_mod)
    end function elastic_energy
 
    !> .true. if props and statev are long enough for umat (no value checks:

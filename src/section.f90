@@ -50,8 +50,10 @@ contains
    !>  c        [out] C(2,2): dN/deps, dN/drho = dM/deps, dM/drho (consistent)
    !>  pnewdt   [in,out] set < 1 when a fibre inverts or the material asks
    pure subroutine section_response(eps, rho, wz, props, hn, h1, force, moment, c, pnewdt)
-      real(dp), intent(in) :: eps, rho, wz(:), props(:), hn(:, :)
-      real(dp), intent(out) :: h1(:, :), force, moment, c(2, 2)
+      real(dp), intent(in) :: eps, rho, wz(:), props(:)
+      real(dp), contiguous, intent(in) :: hn(:, :)
+      real(dp), contiguous, intent(out) :: h1(:, :)
+      real(dp), intent(out) :: force, moment, c(2, 2)
       real(dp), intent(inout) :: pnewdt
       integer :: k, npt
       real(dp) :: lam(size(wz)), log_lam(size(wz)), dstran(size(wz), 2), ddsdde(size(wz), 2, 2)
