@@ -3,7 +3,7 @@
 #
 # Usage: scripts/bench.sh [options] [deck.nml ...]
 #
-# Builds the release program (make -s, default release flags -O2 -g), then
+# Builds the release program (make -s, the Makefile's release flags), then
 # runs each deck N times, one run at a time, each into its own scratch
 # output directory (bin/drawbead DECK --output DIR, stdout to /dev/null),
 # and prints one table row per deck: the median, smallest and largest wall
@@ -21,7 +21,8 @@
 #                     build/ and bin/drawbead)
 #   --fflags FLAGS    compile with FLAGS instead of the release flags (env
 #                     BENCH_FFLAGS); an FFLAGS set in the environment is
-#                     otherwise ignored, so that the default really is -O2 -g
+#                     otherwise ignored, so that the default really is the
+#                     release flags
 #   --no-build        do not run make; use the existing binary
 #   --keep DIR        write the run outputs under DIR and keep them
 #                     (default: a temporary directory, removed at the end)
