@@ -222,4 +222,5 @@ help:
 	@echo "  clean                   remove build/ build-check/ bin/ out/"
 	@echo "Variables: FC=$(FC) LDLIBS=$(LDLIBS) DECK=$(DECK) PFUNIT_DIR=$(PFUNIT_DIR)"
 	@echo "  FFLAGS=$(FFLAGS)"
+	@echo "  ARCH_FLAGS=$(ARCH_FLAGS) (part of the release FFLAGS; empty: a portable binary)"
 	@echo "  CHECK_FFLAGS=$(CHECK_FFLAGS)"
