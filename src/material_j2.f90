@@ -154,7 +154,11 @@ contains
    !> the block that the compiler can vectorize (libmvec's pow, log, exp):
    !> the elastic predictor of all points, then the return mapping of the
    !> points that yield, packed together (return_map_block), then the end
-   !> states.  Point k gets exactly what umat would give it.
+   !> states.  Point k gets what umat would give it alone, to the local
+   !> tolerance: the block iterates until its slowest point has converged,
+   !> so a point may take a full step where alone it would have taken the
+   !> Taylor finish (differences of order 1e-12 in the stress, 1e-8 in H'
+   !> and the tangents that carry it).
    !>
    !> nblock  [in]     number of material points, >= 1.
    !> stress  [in,out] (nblock, 2) Kirchhoff stress (sigma11, sigma33) per
@@ -223,10 +227,10 @@ contains
 
       ! Points whose trial state lies outside the yield surface.  A trial
       ! state with sbar_trial <= (1 + tol_yield) sigma_y is elastic (also
-      ! elastic unloading).
+      ! elastic unloading); a NaN is not, so that the checks below fail it.
       np = 0
       do k = 1, nblock
-         if (seq_tr(k) > (1.0_dp + tol_yield)*sy_n(k)) then
+         if (.not. seq_tr(k) <= (1.0_dp + tol_yield)*sy_n(k)) then
             np = np + 1
             idx(np) = k
          end if
@@ -378,7 +382,7 @@ contains
    !> Every point takes a Newton step in every pass (a converged point stays
    !> where it is), so each pass is one vector loop and one vector call of
    !> the hardening law.  The passes end when every point has
-   !> |g| <= tol_newton sigma_y; or, once every point has
+   !> |g| <= tol_newton sigma_y; or, once every point not yet there has
    !> |g| <= tol_taylor sigma_y and a Newton step inside its bracket, with
    !> that step and sigma_y carried to it by Taylor's formula (quadratic
    !> convergence leaves a residual near (tol_taylor)^2 sigma_y, below

@@ -67,6 +67,7 @@ contains
       end do
       if (any(lam <= 0.05_dp)) then
          ! a fibre shortened to nothing: the increment is far too large
+         h1 = hn
          pnewdt = min(pnewdt, 0.25_dp)
          return
       end if
