@@ -212,6 +212,13 @@ contains
       hill_a = 1.0_dp/(2.0_dp*(1.0_dp + r_value))
       hill_b = (1.0_dp + 2.0_dp*r_value)*hill_a
 
+      ! D at every point: the tangent of an elastic point, and of the whole
+      ! block if it fails (the plastic points are overwritten at the end)
+      ddsdde(:, 1, 1) = e_ps
+      ddsdde(:, 2, 1) = d12
+      ddsdde(:, 1, 2) = d12
+      ddsdde(:, 2, 2) = e_ps
+
       ! Elastic predictor; the flow stress comes from the cache statev(5:6),
       ! which a virgin point (statev(5) <= 0) has not filled yet.
       do k = 1, nblock
@@ -253,19 +260,21 @@ contains
       end do
       if (ok .and. np > 0) call return_map_block(np, s_tr, t_tr, ep_n, sy_p, h_p, seq_p, props, &
                                                  nprops, q_s, q_t, seq, dp_inc, sy_end, h_end, ok)
+      if (ok) then
+         do j = 1, np
+            sig1(j) = 0.5_dp*(s_tr(j)*q_s(j) + t_tr(j)*q_t(j))
+            sig2(j) = 0.5_dp*(s_tr(j)*q_s(j) - t_tr(j)*q_t(j))
+            ok = ok .and. ieee_is_finite(sig1(j)) .and. ieee_is_finite(sig2(j)) .and. &
+                 dp_inc(j) > 0.0_dp
+         end do
+      end if
       if (.not. ok) then
-         ddsdde(:, 1, 1) = e_ps
-         ddsdde(:, 2, 1) = d12
-         ddsdde(:, 1, 2) = d12
-         ddsdde(:, 2, 2) = e_ps
          pnewdt = min(pnewdt, pnewdt_cut)
          return
       end if
 
       ! End states of the plastic points, packed.
       do j = 1, np
-         sig1(j) = 0.5_dp*(s_tr(j)*q_s(j) + t_tr(j)*q_t(j))
-         sig2(j) = 0.5_dp*(s_tr(j)*q_s(j) - t_tr(j)*q_t(j))
          ! flow direction n = P sigma / sbar (hill_normal)
          f1 = (sig1(j) - r*sig2(j))/seq(j)
          f2 = (sig2(j) - r*sig1(j))/seq(j)
@@ -312,18 +321,6 @@ contains
          spd_p(j) = spd_p(j) + plastic_work(ep_n(j) + dp_inc(j), sy_end(j), props, nprops) &
                     - plastic_work(ep_n(j), sy_p(j), props, nprops)
       end do
-      do j = 1, np
-         if (.not. (ieee_is_finite(sig1(j)) .and. ieee_is_finite(sig2(j)) .and. dp_inc(j) > 0.0_dp)) &
-            ok = .false.
-      end do
-      if (.not. ok) then
-         ddsdde(:, 1, 1) = e_ps
-         ddsdde(:, 2, 1) = d12
-         ddsdde(:, 1, 2) = d12
-         ddsdde(:, 2, 2) = e_ps
-         pnewdt = min(pnewdt, pnewdt_cut)
-         return
-      end if
 
       ! Every point as if elastic (the plastic ones are overwritten below).
       ! Thickness strain: plane stress sigma22 = 0 gives
@@ -337,10 +334,6 @@ contains
          statev(k, 5) = sy_n(k)
          statev(k, 6) = h_n(k)
          sse(k) = elastic_energy(sig_tr1(k), sig_tr2(k), e_mod, nu)
-         ddsdde(k, 1, 1) = e_ps
-         ddsdde(k, 2, 1) = d12
-         ddsdde(k, 1, 2) = d12
-         ddsdde(k, 2, 2) = e_ps
       end do
       do j = 1, np
          k = idx(j)
