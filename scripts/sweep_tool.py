@@ -397,19 +397,26 @@ def cmd_collect(args):
 # ---------------------------------------------------------------------------
 # Equivalent-bead curves
 # ---------------------------------------------------------------------------
-def read_pull(rundir):
-    """Rows (delta/h, N/(E h), N [N/mm], lift/(E h), lift [N/mm]) of pull.dat."""
+def read_table(path, columns):
+    """The given 0-based columns of a drawbead .dat file as tuples of floats,
+    one per data row ('#' lines and blank lines skipped); [] if the file is
+    missing or a row is short or not numeric."""
     rows = []
     try:
-        with open(os.path.join(rundir, 'pull.dat')) as f:
+        with open(path) as f:
             for line in f:
                 if line.startswith('#') or not line.strip():
                     continue
                 c = line.split()
-                rows.append((float(c[0]), float(c[1]), float(c[2]), float(c[6]), float(c[7])))
+                rows.append(tuple(float(c[i]) for i in columns))
     except (OSError, ValueError, IndexError):
         return []
     return rows
+
+
+def read_pull(rundir):
+    """Rows (delta/h, N/(E h), N [N/mm], lift/(E h), lift [N/mm]) of pull.dat."""
+    return read_table(os.path.join(rundir, 'pull.dat'), (0, 1, 2, 6, 7))
 
 
 def read_closing(rundir):
@@ -427,17 +434,7 @@ def read_closing(rundir):
         return []
     if h is None:
         return []
-    pts = []
-    try:
-        with open(os.path.join(rundir, 'lock.dat')) as f:
-            for line in f:
-                if line.startswith('#') or not line.strip():
-                    continue
-                c = line.split()
-                pts.append((float(c[0]) * h, float(c[2])))
-    except (OSError, ValueError, IndexError):
-        return []
-    return pts
+    return [(hh * h, f) for hh, f in read_table(os.path.join(rundir, 'lock.dat'), (0, 2))]
 
 
 def window_mean(rows, col, lo, hi):
