@@ -40,6 +40,10 @@ module analysis
       real(dp), allocatable :: pull_delta(:), pull_force(:)
       integer :: n_pull = 0
       real(dp) :: max_penetration = 0.0_dp
+      ! the first converged state folded tighter than fold_curvature (|rho| h)
+      logical :: folded = .false.
+      character(len=8) :: fold_phase = ''
+      real(dp) :: fold_load = 0.0_dp, fold_s = 0.0_dp, fold_rho_h = 0.0_dp
       ! energy bookkeeping (N mm per mm of width): external work so far, the
       ! force conjugate to the load parameter at the last increment, and the
       ! work and stored/dissipated energies when pulling started
@@ -135,7 +139,7 @@ contains
       integer :: k_cr
       logical :: have_prev, steep
       character(len=16) :: tag
-      character(len=100) :: msg
+      character(len=200) :: msg
       h = m%thickness
       eh = m%youngs*h
       call band_init(kb, m%n_dof, half_band, half_band)
@@ -232,6 +236,25 @@ contains
             call warn(msg)
          end if
          rec%max_penetration = max(rec%max_penetration, pen)
+         ! a Gauss station bent to a radius below fold_curvature thicknesses
+         ! (|rho| h > fold_curvature, default 1) has folded: the shell theory
+         ! assumes h/R << 1, the paper's beads bend the sheet to h/R <= 0.36,
+         ! and such folds are hinges one or two elements wide whose forces
+         ! depend on the mesh (README, Known differences): warn once per run
+         if (.not. rec%folded) then
+            k_cr = maxloc(abs(reshape(s%gpn(2, :, :), [n_gauss*m%n_el])), 1)
+            rec%fold_rho_h = abs(s%gpn(2, mod(k_cr - 1, n_gauss) + 1, (k_cr - 1)/n_gauss + 1))*h
+            if (rec%fold_rho_h > d%fold_curvature) then
+               rec%folded = .true.
+               rec%fold_phase = phase
+               rec%fold_load = p
+               rec%fold_s = gauss_position(m, (k_cr - 1)/n_gauss + 1, mod(k_cr - 1, n_gauss) + 1)
+               write (msg, '(a,f6.2,a,f8.3,a,es10.3,a)') 'the sheet folds: |rho| h = ', &
+                  rec%fold_rho_h, ' at s/h = ', rec%fold_s/h, ', load/h = ', p/h, &
+                  ' in '//phase//': beyond the shell theory, later results depend on the mesh'
+               call warn(msg)
+            end if
+         end if
          min_ind = minval(s%indicator)
          ! localization (3.1): first Gauss station whose indicator crosses zero,
          ! interpolated linearly inside the increment

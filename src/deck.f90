@@ -3,7 +3,8 @@
 !> A deck is a text file of Fortran namelist groups, in any order, each
 !> optional:
 !>
-!>   &control   title, output_dir, stop_at_localization, tearing_length, log_residuals, predictor
+!>   &control   title, output_dir, stop_at_localization, tearing_length, fold_curvature,
+!>              log_residuals, predictor
 !>   &sheet     thickness, length, n_elements, mesh_beta, left_edge,
 !>              back_tension
 !>   &material  youngs_modulus, poissons_ratio, r_value, hardening,
@@ -69,6 +70,7 @@ module deck
       logical :: stop_at_localization = .true.
       logical :: log_residuals = .false.          ! print each increment's Newton residual sequence
       real(dp) :: tearing_length = 1.0_dp         ! averaging length of the mesh-objective tearing measure, units of h
+      real(dp) :: fold_curvature = 1.0_dp         ! |rho| h above which the sheet is reported folded (beyond shell theory)
       logical :: predictor = .true.               ! extrapolate the last increment's motion as first guess
       ! &sheet
       real(dp) :: thickness = default_thickness       ! h, mm
@@ -322,9 +324,9 @@ contains
       character(len=256) :: title
       character(len=512) :: output_dir
       logical :: stop_at_localization, log_residuals, predictor
-      real(dp) :: tearing_length
-      namelist /control/ title, output_dir, stop_at_localization, tearing_length, log_residuals, &
-         predictor
+      real(dp) :: tearing_length, fold_curvature
+      namelist /control/ title, output_dir, stop_at_localization, tearing_length, fold_curvature, &
+         log_residuals, predictor
       character(len=echo_len) :: lines(echo_rows)
 
       title = d%title
@@ -333,6 +335,7 @@ contains
       log_residuals = d%log_residuals
       predictor = d%predictor
       tearing_length = d%tearing_length
+      fold_curvature = d%fold_curvature
       select case (action)
       case (act_read_unit)
          read (unit, nml=control, iostat=ios, iomsg=msg)
@@ -350,6 +353,7 @@ contains
       d%log_residuals = log_residuals
       d%predictor = predictor
       d%tearing_length = tearing_length
+      d%fold_curvature = fold_curvature
    end subroutine nml_control
 
    !> nml_sheet -- namelist &sheet (arguments as group_io).
@@ -959,6 +963,7 @@ contains
       call check_text_length(errs, at(p, 'control', 'title'), d%title)
       call check_text_length(errs, at(p, 'control', 'output_dir'), d%output_dir)
       call check_real(errs, at(p, 'control', 'tearing_length'), d%tearing_length, lo=0.0_dp)
+      call check_real(errs, at(p, 'control', 'fold_curvature'), d%fold_curvature, lo=0.0_dp, lo_open=.true.)
 
       ! &sheet
       call check_real(errs, at(p, 'sheet', 'thickness'), d%thickness, lo=0.0_dp, lo_open=.true.)

@@ -124,6 +124,12 @@ contains
       call write_summary_line(u, 's_star_nonlocal_over_h', rec%nl_s_star/h, rec%nl_localized)
       call write_summary_line(u, 'tearing_length_over_h', d%tearing_length, .true.)
       call write_summary_line(u, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
+      ! the first state bent tighter than fold_curvature: past it the forces
+      ! depend on the mesh (a hinge one or two elements wide)
+      write (u, '(a)') 'fold_phase = '//trim(merge(rec%fold_phase, 'none    ', rec%folded))
+      call write_summary_line(u, 'fold_load_over_h', rec%fold_load/h, rec%folded)
+      call write_summary_line(u, 's_fold_over_h', rec%fold_s/h, rec%folded)
+      call write_summary_line(u, 'fold_curvature', d%fold_curvature, .true.)
       call write_summary_line(u, 'lock_force_over_Eh', rec%lock_force/eh, m%has_tools)
       call write_summary_line(u, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
       call write_summary_line(u, 'final_force_over_Eh', rec%pull_force(max(rec%n_pull, 1))/eh, rec%n_pull > 0)
