@@ -34,8 +34,8 @@ fi
 echo "ok   fold_bead_a: warned, fold at H/h = $load, s/h = $s"
 
 sed -e 's/fold_curvature = 0.2/fold_curvature = 1.0/' tests/decks/fold_bead_a.nml > "$out/nofold.nml"
-"$bin" "$out/nofold.nml" --output "$out/nofold" > "$out/log2" 2> "$out/err2"
-if [ $? -ne 0 ] || grep -q 'folds' "$out/err2" || [ "$(value "$out/nofold/summary.txt" fold_phase)" != none ]; then
+if ! "$bin" "$out/nofold.nml" --output "$out/nofold" > "$out/log2" 2> "$out/err2" ||
+    grep -q 'folds' "$out/err2" || [ "$(value "$out/nofold/summary.txt" fold_phase)" != none ]; then
     echo "FAIL fold_bead_a with fold_curvature = 1: a fold was reported"
     exit 1
 fi
