@@ -56,9 +56,14 @@ contains
       real(dp), contiguous, intent(out) :: h1(:, :, :)
       real(dp), intent(out) :: re(8), ke(8, 8), gp(4, n_gauss)
       real(dp), intent(inout) :: pnewdt
+      ! G = dg/dq has two entries per column: column k holds s1(k) in row
+      ! row_1(k) (v' or w') and s2(k) in row row_2(k) (v'' or w''), so
+      ! B = d(eps, rho)/dq and G^T H G are formed from those entries alone
+      integer, parameter :: row_1(8) = [1, 1, 2, 2, 1, 1, 2, 2], row_2(8) = [3, 3, 4, 4, 3, 3, 4, 4]
       real(dp) :: g(4), gm(4, 8), eps, rho, deps(4), drho(4), d2eps(4, 4), d2rho(4, 4)
-      real(dp) :: force, moment, c(2, 2), beps(8), brho(8), hg(4, 4), dv
-      integer :: ig, i
+      real(dp) :: force, moment, c(2, 2), beps(8), brho(8), hg(4, 4), dv, s1(8), s2(8)
+      real(dp) :: ca(8), cb(8), hs(4, 8)
+      integer :: ig, i, j
       re = 0.0_dp
       ke = 0.0_dp
       gp = 0.0_dp
@@ -70,15 +75,26 @@ contains
          if (pnewdt < 1.0_dp) return
          gp(:, ig) = [eps, rho, force, moment]
          dv = gauss_wt(ig)*le
-         beps = matmul(deps, gm)
-         brho = matmul(drho, gm)
-         re = re + dv*(force*beps + moment*brho)
-         hg = force*d2eps + moment*d2rho
-         do i = 1, 8
-            ke(:, i) = ke(:, i) + dv*(beps*(c(1, 1)*beps(i) + c(1, 2)*brho(i)) &
-                                      + brho*(c(2, 1)*beps(i) + c(2, 2)*brho(i)))
+         do j = 1, 8
+            s1(j) = gm(row_1(j), j)
+            s2(j) = gm(row_2(j), j)
+            beps(j) = deps(row_1(j))*s1(j) + deps(row_2(j))*s2(j)
+            brho(j) = drho(row_1(j))*s1(j) + drho(row_2(j))*s2(j)
          end do
-         ke = ke + dv*matmul(transpose(gm), matmul(hg, gm))
+         re = re + dv*(force*beps + moment*brho)
+         hg = dv*(force*d2eps + moment*d2rho)
+         ! H G, column by column, then G^T (H G) row by row
+         do j = 1, 8
+            hs(:, j) = hg(:, row_1(j))*s1(j) + hg(:, row_2(j))*s2(j)
+         end do
+         ca = dv*(c(1, 1)*beps + c(1, 2)*brho)
+         cb = dv*(c(2, 1)*beps + c(2, 2)*brho)
+         do j = 1, 8
+            do i = 1, 8
+               ke(i, j) = ke(i, j) + beps(i)*ca(j) + brho(i)*cb(j) &
+                          + s1(i)*hs(row_1(i), j) + s2(i)*hs(row_2(i), j)
+            end do
+         end do
       end do
    end subroutine element_internal
 end module element
