@@ -43,7 +43,7 @@ module analysis
       ! the first converged state folded tighter than fold_curvature (|rho| h)
       logical :: folded = .false.
       character(len=8) :: fold_phase = ''
-      real(dp) :: fold_load = 0.0_dp, fold_s = 0.0_dp, fold_rho_h = 0.0_dp
+      real(dp) :: fold_load = 0.0_dp, fold_s = 0.0_dp
       ! energy bookkeeping (N mm per mm of width): external work so far, the
       ! force conjugate to the load parameter at the last increment, and the
       ! work and stored/dissipated energies when pulling started
@@ -135,8 +135,8 @@ contains
       type(load_type) :: ld
       type(newton_result) :: nr
       real(dp) :: p, dt, dt_prev, h, eh, r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el)
-      real(dp) :: reaction, punch, lift, pen, frac, min_ind, force, force_change, target, jump
-      integer :: k_cr
+      real(dp) :: reaction, punch, lift, pen, frac, min_ind, force, force_change, target, jump, rho_h
+      integer :: k_cr, fold_at(2)
       logical :: have_prev, steep
       character(len=16) :: tag
       character(len=200) :: msg
@@ -242,22 +242,20 @@ contains
          ! and such folds are hinges one or two elements wide whose forces
          ! depend on the mesh (README, Known differences): warn once per run
          if (.not. rec%folded) then
-            k_cr = maxloc(abs(reshape(s%gpn(2, :, :), [n_gauss*m%n_el])), 1)
-            rec%fold_rho_h = abs(s%gpn(2, mod(k_cr - 1, n_gauss) + 1, (k_cr - 1)/n_gauss + 1))*h
-            if (rec%fold_rho_h > d%fold_curvature) then
+            fold_at = maxloc(abs(s%gpn(2, :, :)))
+            rho_h = abs(s%gpn(2, fold_at(1), fold_at(2)))*h
+            if (rho_h > d%fold_curvature) then
                rec%folded = .true.
                rec%fold_phase = phase
                rec%fold_load = p
-               rec%fold_s = gauss_position(m, (k_cr - 1)/n_gauss + 1, mod(k_cr - 1, n_gauss) + 1)
+               rec%fold_s = gauss_position(m, fold_at(2), fold_at(1))
                write (msg, '(a,f6.2,a,f8.3,a,es10.3,a)') 'the sheet folds: |rho| h = ', &
-                  rec%fold_rho_h, ' at s/h = ', rec%fold_s/h, ', load/h = ', p/h, &
+                  rho_h, ' at s/h = ', rec%fold_s/h, ', load/h = ', p/h, &
                   ' in '//phase//': beyond the shell theory, later results depend on the mesh'
                call warn(msg)
             end if
          end if
          min_ind = minval(s%indicator)
-         ! localization (3.1): first Gauss station whose indicator crosses zero,
-         ! interpolated linearly inside the increment
          ! localization (3.1): the first Gauss station whose indicator crosses
          ! zero, interpolated linearly inside the increment (the paper's
          ! pointwise criterion) ...
