@@ -22,6 +22,8 @@
 !>   3 u_T^m (largest committed u_T)   4 sense of first sliding (+1, -1, 0 unknown)
 !>   5,6 position relative to the tool   7 friction dissipation (per ref length)
 !>   8 signed penetration d (< 0: the gap)   9 friction traction along t (signed)
+!>   10 the tool piece nearest at the last search (a hint that speeds up the
+!>      next one; 0 none)
 
 module contact
    use kinds, only: dp
@@ -53,13 +55,14 @@ contains
       real(dp) :: dut(2)
       integer :: seg
       prel = [p(1), p(2) - shift]
-      call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg)
+      call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg, hint=nint(chn(10)))
       f = 0.0_dp
       kf = 0.0_dp
       ch1 = 0.0_dp
       ch1(5:6) = prel
       ch1(7) = chn(7)
       ch1(8) = d
+      ch1(10) = real(seg, dp)
       if (d <= 0.0_dp) return
       ch1(1) = 1.0_dp
       ! normal part: f = pn n with pn = k g(d), dd/dp = -n, dn/dp = curv (I - n n^T)

@@ -24,7 +24,7 @@ contains
    pure subroutine strain_measures(g, eps, rho, deps, drho, d2eps, d2rho)
       real(dp), intent(in) :: g(4)
       real(dp), intent(out) :: eps, rho, deps(4), drho(4), d2eps(4, 4), d2rho(4, 4)
-      real(dp) :: a, b, c, d, q, lam, num, dnum(4), d2num(4, 4), dq(4), d2q(4, 4)
+      real(dp) :: a, b, c, d, q, iq, iq2, lam, num, dnum(4), d2num(4, 4), dq(4), d2q(4, 4)
       integer :: i, j
       a = g(1); b = g(2); c = g(3); d = g(4)
       q = a*a + b*b
@@ -46,11 +46,14 @@ contains
       dq = [2.0_dp*a, 2.0_dp*b, 0.0_dp, 0.0_dp]
       d2q = 0.0_dp
       d2q(1, 1) = 2.0_dp; d2q(2, 2) = 2.0_dp
-      drho = dnum/q - num*dq/q**2
+      ! powers of 1/q once (the divisions dominated this routine)
+      iq = 1.0_dp/q
+      iq2 = iq*iq
+      drho = dnum*iq - num*dq*iq2
       do j = 1, 4
          do i = 1, 4
-            d2rho(i, j) = d2num(i, j)/q - (dnum(i)*dq(j) + dnum(j)*dq(i))/q**2 &
-                          - num*d2q(i, j)/q**2 + 2.0_dp*num*dq(i)*dq(j)/q**3
+            d2rho(i, j) = d2num(i, j)*iq - (dnum(i)*dq(j) + dnum(j)*dq(i) + num*d2q(i, j))*iq2 &
+                          + 2.0_dp*num*dq(i)*dq(j)*iq2*iq
          end do
       end do
    end subroutine strain_measures

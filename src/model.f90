@@ -13,7 +13,7 @@ module model
              n_chist, gauss_position
 
    !> contact history per Gauss station and tool (layout in module contact)
-   integer, parameter :: n_chist = 9
+   integer, parameter :: n_chist = 10
 
    type :: model_type
       integer :: n_el = 0, n_nodes = 0, n_dof = 0, npt = 0

@@ -352,13 +352,14 @@ contains
    !>  seg_index [out] the closest piece: 1..nseg, 0 for the half-line that
    !>                  continues the chain to the left, nseg+1 to the right
    !> No allocation; cost is a loop over the pieces with bounding-box pruning.
-   pure subroutine tool_gap(tool, x, y, d, normal, dn_factor, tangent, seg_index)
+   pure subroutine tool_gap(tool, x, y, d, normal, dn_factor, tangent, seg_index, hint)
       type(tool_type), intent(in) :: tool
       real(dp), intent(in) :: x, y
       real(dp), intent(out) :: d, normal(2), dn_factor, tangent(2)
       integer, intent(out) :: seg_index
+      integer, intent(in), optional :: hint
       real(dp) :: p(2), best, dist, tol, lbx, lby, tin(2), tout(2), q(2)
-      integer :: i, n, clamp, bclamp, ibest
+      integer :: i, j, n, clamp, bclamp, ibest, first
       n = tool%nseg
       p = [x, y - tool%shift]
       tol = 1.0e-12_dp*tool%size
@@ -377,18 +378,27 @@ contains
             ibest = n + 1
          end if
       end if
-      do i = 1, n
+      ! the hinted piece (the nearest one at the station's last search) is
+      ! tried first, so that its distance prunes the others by their boxes
+      first = 0
+      if (present(hint)) then
+         if (hint >= 1 .and. hint <= n) first = hint
+      end if
+      do i = merge(0, 1, first > 0), n
+         ! pass 0 is the hinted piece; the loop then skips it
+         if (i == first) cycle
+         j = merge(first, i, i == 0)
          if (best < huge(1.0_dp)) then
-            lbx = max(tool%seg(i)%box(1) - p(1), 0.0_dp, p(1) - tool%seg(i)%box(2))
-            lby = max(tool%seg(i)%box(3) - p(2), 0.0_dp, p(2) - tool%seg(i)%box(4))
+            lbx = max(tool%seg(j)%box(1) - p(1), 0.0_dp, p(1) - tool%seg(j)%box(2))
+            lby = max(tool%seg(j)%box(3) - p(2), 0.0_dp, p(2) - tool%seg(j)%box(4))
             if (lbx*lbx + lby*lby > (best + tol)**2) cycle
          end if
-         call piece_distance(tool%seg(i), p, dist, clamp)
+         call piece_distance(tool%seg(j), p, dist, clamp)
          ! a strictly nearer piece wins; on a tie an interior projection beats
          ! an end point (keeps the smooth formulas at tangent junctions)
          if (dist < best - tol .or. (dist <= best + tol .and. bclamp /= 0 .and. clamp == 0)) then
             best = dist
-            ibest = i
+            ibest = j
             bclamp = clamp
          end if
       end do
@@ -454,7 +464,7 @@ contains
          v = p - seg%centre
          r = norm2(v)
          if (r > 1.0e-14_dp*seg%radius) then
-            if (in_arc(seg, atan2(v(2), v(1)))) then
+            if (in_arc_dir(seg, v)) then
                clamp = 0
                dist = abs(r - seg%radius)
                return
@@ -656,6 +666,25 @@ contains
       real(dp), intent(in) :: ang
       in_arc = modulo(real(seg%sense, dp)*(ang - seg%theta1), 2.0_dp*pi) <= abs(seg%sweep)
    end function in_arc
+
+   !> IN_ARC_DIR: does the direction v from an arc's centre point into the
+   !> arc's angular range (in_arc without the angle: the signs of two cross
+   !> products with the end directions, no atan2 in the contact search)?
+   pure logical function in_arc_dir(seg, v)
+      type(segment_type), intent(in) :: seg
+      real(dp), intent(in) :: v(2)
+      real(dp) :: c1, c2
+      ! c1 >= 0: v at most pi past the start in the sense of travel;
+      ! c2 >= 0: v at most pi before the end
+      c1 = real(seg%sense, dp)*cross2(seg%p1 - seg%centre, v)
+      c2 = real(seg%sense, dp)*cross2(v, seg%p2 - seg%centre)
+      if (abs(seg%sweep) <= pi) then
+         in_arc_dir = c1 >= 0.0_dp .and. c2 >= 0.0_dp
+      else
+         ! outside is the wedge from the end to the start, less than pi
+         in_arc_dir = c1 >= 0.0_dp .or. c2 >= 0.0_dp
+      end if
+   end function in_arc_dir
 
    !> ARC_TANGENT: unit tangent of an arc, in its sense, at polar angle ang.
    pure function arc_tangent(seg, ang) result(t)
