@@ -16,7 +16,7 @@ module analysis
    use model, only: model_type, state_type, load_type, load_init, gauss_position
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular
-   use output, only: output_files, write_row, write_strains
+   use output, only: output_files, write_row, write_strains, write_snapshot
    use errors, only: warn
    use tools, only: tool_level
    implicit none
@@ -128,7 +128,7 @@ contains
       type(state_type), intent(inout) :: s
       character(len=*), intent(in) :: phase
       real(dp), intent(in) :: p0, p1
-      type(output_files), intent(in) :: out
+      type(output_files), intent(inout) :: out
       type(run_record), intent(inout) :: rec
       type(band_matrix) :: kb
       real(dp) :: nl_old(n_gauss*m%n_el), nl_new(n_gauss*m%n_el)
@@ -136,6 +136,7 @@ contains
       type(newton_result) :: nr
       real(dp) :: p, dt, dt_prev, h, eh, r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el)
       real(dp) :: reaction, punch, lift, pen, frac, min_ind, force, force_change, target, jump, rho_h
+      real(dp) :: next_snapshot
       integer :: k_cr, fold_at(2)
       logical :: have_prev, steep
       character(len=16) :: tag
@@ -156,6 +157,7 @@ contains
       end if
       dt_prev = dt
       have_prev = .false.
+      next_snapshot = p0 + d%snapshot_every*h
       do while (p < p1 - 1.0e-12_dp*h)
          dt = min(dt, p1 - p)
          call phase_load(m, d, phase, p + dt, ld)
@@ -317,6 +319,13 @@ contains
             merge(' NONLOCAL', '         ', rec%nl_localized)
          if (d%log_residuals) write (output_unit, '(a,*(es9.2))') '      residuals:', &
             nr%residual(0:nr%iterations)
+         ! a strain snapshot at the first converged state at or past each
+         ! multiple of snapshot_every h (one per increment however many it passed)
+         if (d%snapshot_every > 0.0_dp .and. p >= next_snapshot - 1.0e-9_dp*h) then
+            call write_snapshot(out, m, s, phase, p/h, rec%increments)
+            next_snapshot = (aint((p - p0)/(d%snapshot_every*h) + 1.0e-9_dp) + 1.0_dp)* &
+                            d%snapshot_every*h + p0
+         end if
          ! stop once both tearing criteria have been met
          if (rec%localized .and. rec%nl_localized .and. d%stop_at_localization) return
          ! grow after easy convergence, shrink after a hard one; and resolve

@@ -4,7 +4,7 @@
 !> optional:
 !>
 !>   &control   title, output_dir, stop_at_localization, tearing_length, fold_curvature,
-!>              log_residuals, predictor
+!>              log_residuals, predictor, snapshot_every
 !>   &sheet     thickness, length, n_elements, mesh_beta, left_edge,
 !>              back_tension
 !>   &material  youngs_modulus, poissons_ratio, r_value, hardening,
@@ -72,6 +72,7 @@ module deck
       real(dp) :: tearing_length = 1.0_dp         ! averaging length of the mesh-objective tearing measure, units of h
       real(dp) :: fold_curvature = 1.0_dp         ! |rho| h above which the sheet is reported folded (beyond shell theory)
       logical :: predictor = .true.               ! extrapolate the last increment's motion as first guess
+      real(dp) :: snapshot_every = 0.0_dp         ! strain snapshot each time H or delta passes a multiple of it, units of h (0: none)
       ! &sheet
       real(dp) :: thickness = default_thickness       ! h, mm
       real(dp) :: length = unset                      ! 2L, mm; default 50 h
@@ -324,9 +325,9 @@ contains
       character(len=256) :: title
       character(len=512) :: output_dir
       logical :: stop_at_localization, log_residuals, predictor
-      real(dp) :: tearing_length, fold_curvature
+      real(dp) :: tearing_length, fold_curvature, snapshot_every
       namelist /control/ title, output_dir, stop_at_localization, tearing_length, fold_curvature, &
-         log_residuals, predictor
+         log_residuals, predictor, snapshot_every
       character(len=echo_len) :: lines(echo_rows)
 
       title = d%title
@@ -336,6 +337,7 @@ contains
       predictor = d%predictor
       tearing_length = d%tearing_length
       fold_curvature = d%fold_curvature
+      snapshot_every = d%snapshot_every
       select case (action)
       case (act_read_unit)
          read (unit, nml=control, iostat=ios, iomsg=msg)
@@ -354,6 +356,7 @@ contains
       d%predictor = predictor
       d%tearing_length = tearing_length
       d%fold_curvature = fold_curvature
+      d%snapshot_every = snapshot_every
    end subroutine nml_control
 
    !> nml_sheet -- namelist &sheet (arguments as group_io).
@@ -964,6 +967,7 @@ contains
       call check_text_length(errs, at(p, 'control', 'output_dir'), d%output_dir)
       call check_real(errs, at(p, 'control', 'tearing_length'), d%tearing_length, lo=0.0_dp)
       call check_real(errs, at(p, 'control', 'fold_curvature'), d%fold_curvature, lo=0.0_dp, lo_open=.true.)
+      call check_real(errs, at(p, 'control', 'snapshot_every'), d%snapshot_every, lo=0.0_dp)
 
       ! &sheet
       call check_real(errs, at(p, 'sheet', 'thickness'), d%thickness, lo=0.0_dp, lo_open=.true.)

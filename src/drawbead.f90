@@ -11,7 +11,8 @@ program drawbead
    use model, only: model_type, state_type, model_init, state_init
    use tools, only: build_rectangular_bead, read_profile
    use analysis, only: run_record, run_record_init, run_phase
-   use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools
+   use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools, &
+                     open_snapshots
    use summary, only: write_summary
    implicit none
    type(deck_type) :: d
@@ -92,6 +93,8 @@ program drawbead
    call run_record_init(rec)
 
    call open_outputs(trim(d%output_dir), trim(d%title), out, errmsg)
+   if (len_trim(errmsg) == 0 .and. d%snapshot_every > 0.0_dp) &
+      call open_snapshots(out, trim(d%title), d%snapshot_every, errmsg)
    if (len_trim(errmsg) > 0) then
       write (error_unit, '(a)') '*ERROR* deck '''//trim(d%deck_file)//''', group &control, '// &
          'variable output_dir: '//trim(errmsg)

@@ -14,7 +14,7 @@ module output
    implicit none
    private
    public :: output_files, open_outputs, write_row, write_strains, write_summary_line, &
-             close_outputs, make_directory, fmt_row, write_tools
+             close_outputs, make_directory, fmt_row, write_tools, open_snapshots, write_snapshot
 
    character(len=*), parameter :: fmt_row = '(*(1x,es24.16e3))'
 
@@ -22,7 +22,17 @@ module output
    type :: output_files
       character(len=:), allocatable :: dir
       integer :: lock = -1, pull = -1, summary = -1
+      integer :: snapshots = -1, n_snapshots = 0  ! snapshots.dat (&control snapshot_every)
+      ! (units from NEWUNIT are negative and never -1: -1 marks a file not open)
    end type output_files
+
+   !> The column header of the strain files (strain_*.dat, snapshots.dat).
+   character(len=*), parameter :: strain_columns = &
+      '# 1:s/h (reference position) 2:x/h 3:y/h (current centreline) 4:lambda-1'// &
+      ' 5:ln(lambda) 6:top_fibre_log_strain 7:bottom_fibre_log_strain'// &
+      ' 8:thickness_log_strain(mid-surface) 9:max_equivalent_plastic_strain(through thickness)'// &
+      ' 10:rho*h (bending strain) 11:N/(E h) 12:M/(E h^2)'// &
+      ' 13:localization_indicator (smallest eigenvalue of the scaled section tangent, <= 0: localized)'
 
 contains
 
@@ -107,18 +117,79 @@ contains
       character(len=*), intent(in) :: path, what
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
-      integer :: unit, e, ig, dofs(8), mid, stat
-      real(dp) :: le, nv(4), dn(4), d2n(4), v, w, h, eps, top, bot, e22, epmax
+      integer :: unit, stat
       open (newunit=unit, file=path, status='replace', action='write', iostat=stat)
       if (stat /= 0) return
+      write (unit, '(a)') '# drawbead strain distribution '//trim(what), strain_columns
+      call write_strain_rows(unit, m, s)
+      close (unit)
+   end subroutine write_strains
+
+   !> OPEN_SNAPSHOTS: open snapshots.dat in the output directory and write
+   !> its header; the snapshots follow as blocks (write_snapshot).
+   !>  out    [in,out] the run's files (out%dir set by open_outputs)
+   !>  title  [in]  run title
+   !>  every  [in]  the spacing of the snapshots, units of h (for the header)
+   !>  errmsg [out] '' on success
+   subroutine open_snapshots(out, title, every, errmsg)
+      type(output_files), intent(inout) :: out
+      character(len=*), intent(in) :: title
+      real(dp), intent(in) :: every
+      character(len=*), intent(out) :: errmsg
+      integer :: stat
+      character(len=32) :: buf
+      errmsg = ''
+      open (newunit=out%snapshots, file=out%dir//'/snapshots.dat', status='replace', &
+            action='write', iostat=stat)
+      if (stat /= 0) then
+         errmsg = 'cannot write in output directory '//out%dir
+         out%snapshots = -1
+         return
+      end if
+      write (buf, '(g0.6)') every
+      write (out%snapshots, '(a)') '# drawbead strain snapshots: '//trim(title), &
+         '# one block (gnuplot index 0, 1, ...) at the first converged increment at or past'// &
+         ' each multiple of '//trim(buf)//'h of H (locking) and of delta (pulling);'// &
+         ' each block opens with a line: # block K phase load/h increment', strain_columns
+      out%n_snapshots = 0
+      flush (out%snapshots)
+   end subroutine open_snapshots
+
+   !> WRITE_SNAPSHOT: append one block of strain rows to snapshots.dat,
+   !> flushed; blocks are separated by two blank lines (gnuplot's index).
+   !>  out    [in,out] the run's files (nothing is written if not open)
+   !>  m, s   [in] model and converged state
+   !>  phase  [in] 'lock' or 'pull'
+   !>  load_over_h [in] H/h or delta/h of the state
+   !>  increment   [in] the run's increment count at the state
+   subroutine write_snapshot(out, m, s, phase, load_over_h, increment)
+      type(output_files), intent(inout) :: out
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      character(len=*), intent(in) :: phase
+      real(dp), intent(in) :: load_over_h
+      integer, intent(in) :: increment
+      if (out%snapshots == -1) return
+      if (out%n_snapshots > 0) write (out%snapshots, '(/)')
+      write (out%snapshots, '(a,i0,1x,a,1x,es24.16e3,1x,i0)') '# block ', out%n_snapshots, phase, &
+         load_over_h, increment
+      call write_strain_rows(out%snapshots, m, s)
+      flush (out%snapshots)
+      out%n_snapshots = out%n_snapshots + 1
+   end subroutine write_snapshot
+
+   !> WRITE_STRAIN_ROWS: the rows of a strain file, one per Gauss point
+   !> (columns: strain_columns).
+   !>  unit  [in] open file
+   !>  m, s  [in] model and converged state
+   subroutine write_strain_rows(unit, m, s)
+      integer, intent(in) :: unit
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      integer :: e, ig, dofs(8), mid
+      real(dp) :: le, nv(4), dn(4), d2n(4), v, w, h, eps, top, bot, e22, epmax
       h = m%thickness
       mid = (m%npt + 1)/2
-      write (unit, '(a)') '# drawbead strain distribution '//trim(what), &
-         '# 1:s/h (reference position) 2:x/h 3:y/h (current centreline) 4:lambda-1'// &
-         ' 5:ln(lambda) 6:top_fibre_log_strain 7:bottom_fibre_log_strain'// &
-         ' 8:thickness_log_strain(mid-surface) 9:max_equivalent_plastic_strain(through thickness)'// &
-         ' 10:rho*h (bending strain) 11:N/(E h) 12:M/(E h^2)'// &
-         ' 13:localization_indicator (smallest eigenvalue of the scaled section tangent, <= 0: localized)'
       do e = 1, m%n_el
          dofs = element_dofs(e)
          le = m%x(e + 1) - m%x(e)
@@ -136,8 +207,7 @@ contains
                s%gpn(3, ig, e)/(m%youngs*h), s%gpn(4, ig, e)/(m%youngs*h*h), s%indicator(ig, e)
          end do
       end do
-      close (unit)
-   end subroutine write_strains
+   end subroutine write_strain_rows
 
    !> WRITE_TOOLS: the tools' centreline surfaces at the lower tool's rise H,
    !> sampled at 400 points each, upper tool first, a blank line between
@@ -173,9 +243,12 @@ contains
    !> CLOSE_OUTPUTS: close the files kept open.
    subroutine close_outputs(out)
       type(output_files), intent(inout) :: out
-      if (out%lock > 0) close (out%lock)
-      if (out%pull > 0) close (out%pull)
+      ! NEWUNIT numbers are negative and never -1, the value of a closed file
+      if (out%lock /= -1) close (out%lock)
+      if (out%pull /= -1) close (out%pull)
+      if (out%snapshots /= -1) close (out%snapshots)
       out%lock = -1
       out%pull = -1
+      out%snapshots = -1
    end subroutine close_outputs
 end module output
