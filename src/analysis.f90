@@ -120,7 +120,7 @@ contains
    !>  s     [in,out] state, converged at p0 on entry
    !>  phase [in]  'lock' or 'pull'
    !>  p0,p1 [in]  start and end of the load parameter
-   !>  out   [in]  open output files
+   !>  out   [in,out] open output files (snapshots.dat counts its blocks)
    !>  rec   [in,out] run record
    subroutine run_phase(m, d, s, phase, p0, p1, out, rec)
       type(model_type), intent(in) :: m
@@ -323,8 +323,10 @@ contains
          ! multiple of snapshot_every h (one per increment however many it passed)
          if (d%snapshot_every > 0.0_dp .and. p >= next_snapshot - 1.0e-9_dp*h) then
             call write_snapshot(out, m, s, phase, p/h, rec%increments)
-            next_snapshot = (aint((p - p0)/(d%snapshot_every*h) + 1.0e-9_dp) + 1.0_dp)* &
-                            d%snapshot_every*h + p0
+            ! (the same slack of 1e-9 h as the test above: a state just short
+            ! of a multiple counts as past it, and the next one is then due)
+            next_snapshot = p0 + (aint((p - p0 + 1.0e-9_dp*h)/(d%snapshot_every*h)) + 1.0_dp)* &
+                            d%snapshot_every*h
          end if
          ! stop once both tearing criteria have been met
          if (rec%localized .and. rec%nl_localized .and. d%stop_at_localization) return

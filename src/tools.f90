@@ -351,6 +351,11 @@ contains
    !>                  tangent = side*(-normal_y, normal_x)
    !>  seg_index [out] the closest piece: 1..nseg, 0 for the half-line that
    !>                  continues the chain to the left, nseg+1 to the right
+   !>  hint      [in]  optional: a piece (1..nseg) to try first, e.g. the
+   !>                  seg_index of the point's last search; its distance then
+   !>                  prunes the other pieces by their boxes at once.  The
+   !>                  answer does not depend on it (ties still go to the
+   !>                  lower index); other values are ignored
    !> No allocation; cost is a loop over the pieces with bounding-box pruning.
    pure subroutine tool_gap(tool, x, y, d, normal, dn_factor, tangent, seg_index, hint)
       type(tool_type), intent(in) :: tool
@@ -396,7 +401,10 @@ contains
          call piece_distance(tool%seg(j), p, dist, clamp)
          ! a strictly nearer piece wins; on a tie an interior projection beats
          ! an end point (keeps the smooth formulas at tangent junctions)
-         if (dist < best - tol .or. (dist <= best + tol .and. bclamp /= 0 .and. clamp == 0)) then
+         ! (and, as in a search without a hint, the lower index of two
+         ! pieces of the same kind: the hinted piece comes first)
+         if (dist < best - tol .or. (dist <= best + tol .and. bclamp /= 0 .and. clamp == 0) .or. &
+             (dist <= best + tol .and. j < ibest .and. ibest <= n .and. (clamp == 0 .or. bclamp /= 0))) then
             best = dist
             ibest = j
             bclamp = clamp

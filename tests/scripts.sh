@@ -302,8 +302,7 @@ check "LS-DYNA keyword file with two curves" \
 # ---------------------------------------------------------------------------
 if command -v shellcheck >/dev/null 2>&1; then
     echo "== f) shellcheck"
-    check "shellcheck: batch scripts and this test" shellcheck scripts/run_paper.sh scripts/sweep.sh \
-        scripts/bead_curves.sh scripts/make_docs_figures.sh tests/scripts.sh "$script"
+    check "shellcheck: every script of scripts/ and tests/" shellcheck scripts/*.sh tests/*.sh
 fi
 
 echo "scripts.sh: $checks checks, $failures failed"
