@@ -200,7 +200,7 @@ contains
       ! the axis-extreme points of the circle inside the arc widen the box
       do k = 0, 3
          ang = 0.5_dp*pi*real(k, dp)
-         if (in_arc(seg, ang)) then
+         if (in_arc(seg, [cos(ang), sin(ang)])) then
             seg%box(1) = min(seg%box(1), centre(1) + seg%radius*cos(ang))
             seg%box(2) = max(seg%box(2), centre(1) + seg%radius*cos(ang))
             seg%box(3) = min(seg%box(3), centre(2) + seg%radius*sin(ang))
@@ -351,11 +351,11 @@ contains
    !>                  tangent = side*(-normal_y, normal_x)
    !>  seg_index [out] the closest piece: 1..nseg, 0 for the half-line that
    !>                  continues the chain to the left, nseg+1 to the right
-   !>  hint      [in]  optional: a piece (1..nseg) to try first, e.g. the
-   !>                  seg_index of the point's last search; its distance then
-   !>                  prunes the other pieces by their boxes at once.  The
-   !>                  answer does not depend on it (ties still go to the
-   !>                  lower index); other values are ignored
+   !>  hint      [in]  optional: a piece (1..nseg) likely nearest, e.g. the
+   !>                  seg_index of the point's last search; its distance
+   !>                  bounds the answer, so that the other pieces are pruned
+   !>                  by their boxes at once.  The answer does not depend
+   !>                  on it; other values are ignored
    !> No allocation; cost is a loop over the pieces with bounding-box pruning.
    pure subroutine tool_gap(tool, x, y, d, normal, dn_factor, tangent, seg_index, hint)
       type(tool_type), intent(in) :: tool
@@ -363,8 +363,8 @@ contains
       real(dp), intent(out) :: d, normal(2), dn_factor, tangent(2)
       integer, intent(out) :: seg_index
       integer, intent(in), optional :: hint
-      real(dp) :: p(2), best, dist, tol, lbx, lby, tin(2), tout(2), q(2)
-      integer :: i, j, n, clamp, bclamp, ibest, first
+      real(dp) :: p(2), best, bound, dist, tol, lbx, lby, tin(2), tout(2), q(2)
+      integer :: i, n, clamp, bclamp, ibest
       n = tool%nseg
       p = [x, y - tool%shift]
       tol = 1.0e-12_dp*tool%size
@@ -383,30 +383,28 @@ contains
             ibest = n + 1
          end if
       end if
-      ! the hinted piece (the nearest one at the station's last search) is
-      ! tried first, so that its distance prunes the others by their boxes
-      first = 0
+      ! the hinted piece's distance (the nearest piece at the station's last
+      ! search) bounds the answer, so that the boxes prune the others at
+      ! once; the scan in index order, and with it the answer, is unchanged
+      bound = best
       if (present(hint)) then
-         if (hint >= 1 .and. hint <= n) first = hint
-      end if
-      do i = merge(0, 1, first > 0), n
-         ! pass 0 is the hinted piece; the loop then skips it
-         if (i == first) cycle
-         j = merge(first, i, i == 0)
-         if (best < huge(1.0_dp)) then
-            lbx = max(tool%seg(j)%box(1) - p(1), 0.0_dp, p(1) - tool%seg(j)%box(2))
-            lby = max(tool%seg(j)%box(3) - p(2), 0.0_dp, p(2) - tool%seg(j)%box(4))
-            if (lbx*lbx + lby*lby > (best + tol)**2) cycle
+         if (hint >= 1 .and. hint <= n) then
+            call piece_distance(tool%seg(hint), p, dist, clamp)
+            bound = min(bound, dist)
          end if
-         call piece_distance(tool%seg(j), p, dist, clamp)
+      end if
+      do i = 1, n
+         if (bound < huge(1.0_dp)) then
+            lbx = max(tool%seg(i)%box(1) - p(1), 0.0_dp, p(1) - tool%seg(i)%box(2))
+            lby = max(tool%seg(i)%box(3) - p(2), 0.0_dp, p(2) - tool%seg(i)%box(4))
+            if (lbx*lbx + lby*lby > (min(best, bound) + tol)**2) cycle
+         end if
+         call piece_distance(tool%seg(i), p, dist, clamp)
          ! a strictly nearer piece wins; on a tie an interior projection beats
          ! an end point (keeps the smooth formulas at tangent junctions)
-         ! (and, as in a search without a hint, the lower index of two
-         ! pieces of the same kind: the hinted piece comes first)
-         if (dist < best - tol .or. (dist <= best + tol .and. bclamp /= 0 .and. clamp == 0) .or. &
-             (dist <= best + tol .and. j < ibest .and. ibest <= n .and. (clamp == 0 .or. bclamp /= 0))) then
+         if (dist < best - tol .or. (dist <= best + tol .and. bclamp /= 0 .and. clamp == 0)) then
             best = dist
-            ibest = j
+            ibest = i
             bclamp = clamp
          end if
       end do
@@ -472,7 +470,7 @@ contains
          v = p - seg%centre
          r = norm2(v)
          if (r > 1.0e-14_dp*seg%radius) then
-            if (in_arc_dir(seg, v)) then
+            if (in_arc(seg, v)) then
                clamp = 0
                dist = abs(r - seg%radius)
                return
@@ -668,17 +666,10 @@ contains
       nrm = real(side, dp)*[t(2), -t(1)]
    end function normal_of
 
-   !> IN_ARC: whether the polar angle ang (about the centre) lies on the arc.
-   pure logical function in_arc(seg, ang)
-      type(segment_type), intent(in) :: seg
-      real(dp), intent(in) :: ang
-      in_arc = modulo(real(seg%sense, dp)*(ang - seg%theta1), 2.0_dp*pi) <= abs(seg%sweep)
-   end function in_arc
-
-   !> IN_ARC_DIR: does the direction v from an arc's centre point into the
-   !> arc's angular range (in_arc without the angle: the signs of two cross
-   !> products with the end directions, no atan2 in the contact search)?
-   pure logical function in_arc_dir(seg, v)
+   !> IN_ARC: does the direction v from an arc's centre point into the arc's
+   !> angular range?  The signs of two cross products with the end
+   !> directions decide (no angle, so no atan2 in the contact search).
+   pure logical function in_arc(seg, v)
       type(segment_type), intent(in) :: seg
       real(dp), intent(in) :: v(2)
       real(dp) :: c1, c2
@@ -687,12 +678,12 @@ contains
       c1 = real(seg%sense, dp)*cross2(seg%p1 - seg%centre, v)
       c2 = real(seg%sense, dp)*cross2(v, seg%p2 - seg%centre)
       if (abs(seg%sweep) <= pi) then
-         in_arc_dir = c1 >= 0.0_dp .and. c2 >= 0.0_dp
+         in_arc = c1 >= 0.0_dp .and. c2 >= 0.0_dp
       else
          ! outside is the wedge from the end to the start, less than pi
-         in_arc_dir = c1 >= 0.0_dp .or. c2 >= 0.0_dp
+         in_arc = c1 >= 0.0_dp .or. c2 >= 0.0_dp
       end if
-   end function in_arc_dir
+   end function in_arc
 
    !> ARC_TANGENT: unit tangent of an arc, in its sense, at polar angle ang.
    pure function arc_tangent(seg, ang) result(t)
