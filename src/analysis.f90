@@ -166,7 +166,8 @@ contains
          else
             s%u1 = s%u
          end if
-         call newton_solve(m, s, ld, kb, r, d%max_iterations, d%tolerance, nr)
+         call newton_solve(m, s, ld, kb, r, d%max_iterations, d%tolerance, nr, &
+                           count_states=d%log_residuals)
          rec%newton_iterations = rec%newton_iterations + nr%iterations
          if (nr%status /= newton_ok) then
             rec%cutbacks = rec%cutbacks + 1
@@ -319,8 +320,11 @@ contains
             '  res', nr%residual(nr%iterations), '  loc', min_ind, '  force/Eh=', &
             force/eh, merge(' LOCALIZED', '          ', rec%localized), &
             merge(' NONLOCAL', '         ', rec%nl_localized)
-         if (d%log_residuals) write (output_unit, '(a,*(es9.2))') '      residuals:', &
-            nr%residual(0:nr%iterations)
+         if (d%log_residuals) then
+            write (output_unit, '(a,*(es9.2))') '      residuals:', nr%residual(0:nr%iterations)
+            write (output_unit, '(a,*(i9))') '      plastic:  ', nr%plastic(0:nr%iterations)
+            write (output_unit, '(a,*(i9))') '      switched: ', nr%switched(0:nr%iterations)
+         end if
          ! a strain snapshot at the first converged state at or past each
          ! multiple of snapshot_every h (one per increment however many it passed)
          if (d%snapshot_every > 0.0_dp .and. p >= next_snapshot - 1.0e-9_dp*h) then

@@ -11,7 +11,7 @@ module solver
    use mesh, only: element_dofs, half_band, dofs_per_node
    use band, only: band_matrix, band_init, band_zero, band_add, band_fix_dof, band_solve
    use element, only: element_internal, v_dofs, w_dofs
-   use section, only: section_localization, section_update_zbar
+   use section, only: section_localization, section_update_zbar, ih_statev
    use model, only: model_type, state_type, load_type
    use contact, only: contact_station, contact_commit
    implicit none
@@ -31,6 +31,12 @@ module solver
       real(dp) :: correction = 0.0_dp                      ! last scaled correction
       integer :: singular_pivot = 0
       real(dp) :: pnewdt = 1.0_dp                          ! cut factor asked for (1: none)
+      ! with count_states: the material points plastic in each iterate (their
+      ! equivalent plastic strain above the converged one), and those that
+      ! changed between plastic and elastic since the previous iterate (each
+      ! change is a kink of the residual that Newton crosses; 0 otherwise)
+      integer :: plastic(0:max_newton_history) = 0
+      integer :: switched(0:max_newton_history) = 0
    end type newton_result
 
 contains
@@ -135,7 +141,9 @@ contains
    !>  max_iter  [in]  iteration limit
    !>  tol       [in]  tolerance
    !>  res       [out] what happened
-   subroutine newton_solve(m, s, ld, kb, r, max_iter, tol, res)
+   !>  count_states [in, optional] count the plastic material points of
+   !>            every iterate and their changes (res%plastic, res%switched)
+   subroutine newton_solve(m, s, ld, kb, r, max_iter, tol, res, count_states)
       type(model_type), intent(in) :: m
       type(state_type), intent(inout) :: s
       type(load_type), intent(in) :: ld
@@ -144,10 +152,15 @@ contains
       integer, intent(in) :: max_iter
       real(dp), intent(in) :: tol
       type(newton_result), intent(out) :: res
+      logical, intent(in), optional :: count_states
       real(dp) :: du(size(r)), f_scale, pnewdt, rnorm, cnorm
       integer :: it, i, info, backtrack
       real(dp) :: g0, g1, alpha
       integer :: n_contact_prev
+      logical :: counting
+      logical :: plastic(m%npt, n_gauss, m%n_el), was_plastic(m%npt, n_gauss, m%n_el)
+      counting = .false.
+      if (present(count_states)) counting = count_states
       cnorm = huge(1.0_dp)
       do it = 0, min(max_iter, max_newton_history)
          n_contact_prev = s%n_contact
@@ -188,6 +201,12 @@ contains
             return
          end if
          res%residual(it) = rnorm
+         if (counting) then
+            plastic(:, :, :) = s%h1(:, ih_statev, :, :) > s%hn(:, ih_statev, :, :)
+            res%plastic(it) = count(plastic)
+            if (it > 0) res%switched(it) = count(plastic .neqv. was_plastic)
+            was_plastic(:, :, :) = plastic
+         end if
          if (.not. ieee_is_finite(rnorm)) then
             res%status = newton_diverged
             return
