@@ -141,8 +141,9 @@ contains
    !>  max_iter  [in]  iteration limit
    !>  tol       [in]  tolerance
    !>  res       [out] what happened
-   !>  count_states [in, optional] count the plastic material points of
-   !>            every iterate and their changes (res%plastic, res%switched)
+   !>  count_states [in]  optional: count the plastic material points of
+   !>                      every iterate and their changes (res%plastic,
+   !>                      res%switched)
    subroutine newton_solve(m, s, ld, kb, r, max_iter, tol, res, count_states)
       type(model_type), intent(in) :: m
       type(state_type), intent(inout) :: s
