@@ -51,9 +51,12 @@ MAIN_OBJ := $(BUILD)/drawbead.o
 LIB := $(BUILD)/libdrawbead.a
 DEPS := $(BUILD)/deps.mk
 
-# Tests: the .pf suites, compiled without -std=f2008 and with long lines
-PF_SRCS := $(sort $(wildcard tests/test_*.pf))
-TEST_SCRIPTS := $(sort $(wildcard tests/*.sh))
+# Tests: the .pf suites (tests/unit: one per module; tests/verification:
+# problem-level checks), compiled without -std=f2008 and with long lines;
+# the shell tests (tests/*.sh, tests/regression/*.sh) run the program.
+PF_DIRS := tests/unit tests/verification
+PF_SRCS := $(sort $(wildcard $(addsuffix /test_*.pf,$(PF_DIRS))))
+TEST_SCRIPTS := $(sort $(wildcard tests/*.sh tests/regression/*.sh))
 TEST_DIR := $(BUILD)/tests
 TEST_FFLAGS = $(filter-out -std=%,$(FFLAGS)) -ffree-line-length-none
 
@@ -105,12 +108,14 @@ $(BIN):
 TEST_NEEDS_BIN :=
 endif
 
-# Module dependencies (object -> object), from the use/module statements.
-# deps.mk records the source list it was made from; a changed list (file
-# added or removed) forces it to be regenerated.
-$(DEPS): $(ALL_SRCS) scripts/f90deps.py
+# Module dependencies (object -> object) from Debian's makedepf90 (it
+# misses `use :: mod`: write `use mod, only: ...`).  deps.mk records the
+# source list it was made from; a changed list (file added or removed)
+# forces it to be regenerated.
+$(DEPS): $(ALL_SRCS)
 	@mkdir -p $(@D)
-	$(PYTHON) scripts/f90deps.py --objdir $(BUILD) -o $@ $(ALL_SRCS)
+	{ makedepf90 -b $(BUILD) $(ALL_SRCS) && echo 'DEPS_SRCS := $(ALL_SRCS)'; } > $@.tmp
+	mv $@.tmp $@
 
 ifneq (,$(NEED_DEPS))
 include $(DEPS)
@@ -139,7 +144,8 @@ else
 # pfunit_lite: tests/test_X.pf -> $(TEST_DIR)/test_X.f90, plus a driver
 # $(TEST_DIR)/run_tests.f90 and the funit module of tests/funit_lite.f90.
 LITE := tests/pfunit_lite.py
-PF_F90 := $(patsubst tests/%.pf,$(TEST_DIR)/%.f90,$(PF_SRCS))
+vpath %.pf $(PF_DIRS)
+PF_F90 := $(patsubst %.pf,$(TEST_DIR)/%.f90,$(notdir $(PF_SRCS)))
 PF_OBJS := $(PF_F90:.f90=.o)
 RUNNER := $(TEST_DIR)/run_tests
 PF_LIST := $(TEST_DIR)/pf_list.txt
@@ -154,7 +160,7 @@ $(PF_LIST):
 	@mkdir -p $(@D)
 	echo '$(PF_SRCS)' > $@
 
-$(TEST_DIR)/%.f90: tests/%.pf $(LITE)
+$(TEST_DIR)/%.f90: %.pf $(LITE)
 	$(PYTHON) $(LITE) convert $< $@
 
 $(TEST_DIR)/funit.o: tests/funit_lite.f90 $(FLAGS_STAMP)
@@ -215,7 +221,7 @@ help:
 	@echo "Targets:"
 	@echo "  all (default), release  build $(BIN) with FFLAGS in $(BUILD)/"
 	@echo "  lib                     build $(LIB) only"
-	@echo "  test                    build and run tests/test_*.pf and tests/*.sh"
+	@echo "  test                    build and run tests/{unit,verification}/test_*.pf and the tests/ scripts"
 	@echo "  check-build             build bin/drawbead-check in build-check/ with CHECK_FFLAGS"
 	@echo "  test-check              run the whole test suite with the checked build"
 	@echo "  run                     run $(BIN) $(DECK)"
