@@ -8,7 +8,11 @@ module band
    implicit none
    private
    public :: band_matrix, band_init, band_zero, band_add, band_fix_dof, &
-             band_solve, band_get, band_matvec
+             band_solve, band_get, band_matvec, band_error_message, band_size_error
+
+   !> band_solve's info when the sizes do not fit (found before LAPACK is
+   !> called; LAPACK's own argument errors are -1 ... -10)
+   integer, parameter :: band_size_error = -1000
 
    type :: band_matrix
       integer :: n = 0, kl = 0, ku = 0, ldab = 0
@@ -133,17 +137,38 @@ contains
    !>  a     [in,out] matrix; factors on exit
    !>  b     [in,out] right-hand side; solution on exit
    !>  info  [out] 0 success; i > 0: U(i,i) is exactly zero, the matrix is
-   !>        singular and b is unchanged in meaning; < 0 a size error (caught
-   !>        here before LAPACK's XERBLA could stop the program)
+   !>        singular and b is unchanged in meaning; band_size_error: the
+   !>        sizes do not fit (caught here before LAPACK's XERBLA could stop
+   !>        the program).  band_error_message turns it into a message.
    subroutine band_solve(a, b, info)
       type(band_matrix), intent(inout) :: a
       real(dp), intent(inout) :: b(:)
       integer, intent(out) :: info
       if (a%n < 1 .or. size(b) /= a%n .or. .not. allocated(a%ab) .or. &
           a%ldab < 2*a%kl + a%ku + 1) then
-         info = -1
+         info = band_size_error
          return
       end if
       call dgbsv(a%n, a%kl, a%ku, 1, a%ab, a%ldab, a%ipiv, b, a%n, info)
    end subroutine band_solve
+
+   !> BAND_ERROR_MESSAGE: what a non-zero info of band_solve means, the one
+   !> place where LAPACK's info is translated.
+   !>  info  [in] band_solve's info
+   pure function band_error_message(info) result(msg)
+      integer, intent(in) :: info
+      character(len=:), allocatable :: msg
+      character(len=12) :: num
+      write (num, '(i0)') abs(info)
+      if (info > 0) then
+         msg = 'band_solve: the tangent is singular (dgbsv: U('//trim(num)//','//trim(num)// &
+               ') is exactly zero)'
+      else if (info == band_size_error) then
+         msg = 'band_solve: the matrix and right-hand side sizes do not fit (a programming error)'
+      else if (info < 0) then
+         msg = 'band_solve: dgbsv argument '//trim(num)//' has an illegal value (a programming error)'
+      else
+         msg = 'band_solve: no error'
+      end if
+   end function band_error_message
 end module band

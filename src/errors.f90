@@ -3,15 +3,19 @@
 !> Input errors are not fatal where they are found: each is appended to an
 !> error_list, and the main program reports them all at once (FEAP style,
 !> one `*ERROR* ...` line each) and stops with exit status exit_input.
-!> Warnings are printed at once to error_unit as `*WARNING* ...`.
-!> The module holds no state; every list belongs to its caller.
+!> Warnings are printed at once to error_unit as `*WARNING* ...`.  Every
+!> message of the program goes through this module and names where it
+!> comes from: the deck, group and variable for input, or the routine
+!> (`*WARNING* check_fold: ...`).  Deep routines never stop: they return a
+!> status, and only the main program stops, with one of the exit codes
+!> below.  The module holds no state; every list belongs to its caller.
 module errors
    use kinds, only: error_unit
    implicit none
    private
    public :: exit_ok, exit_input, exit_noconvergence
    public :: error_message, error_list
-   public :: add_error, report_errors, warn
+   public :: add_error, report_errors, warn, print_error
 
    !> Exit status of the program: success.
    integer, parameter :: exit_ok = 0
@@ -74,13 +78,39 @@ contains
       end do
    end subroutine report_errors
 
-   !> warn -- print `*WARNING* <msg>` to error_unit at once.
+   !> warn -- print `*WARNING* [<caller>: ]<msg>` to error_unit at once.
    !>
-   !> msg  [in] the warning text; trailing blanks are dropped.
-   subroutine warn(msg)
+   !> msg     [in] the warning text; trailing blanks are dropped.  Input
+   !>              warnings name the deck, group and variable in it.
+   !> caller  [in] optional: the routine that warns.
+   subroutine warn(msg, caller)
       character(len=*), intent(in) :: msg
+      character(len=*), intent(in), optional :: caller
 
-      write (error_unit, '(a)') '*WARNING* '//trim(msg)
+      write (error_unit, '(a)') '*WARNING* '//prefix(caller)//trim(msg)
    end subroutine warn
+
+   !> print_error -- print `*ERROR* [<caller>: ]<msg>` to error_unit at once
+   !> (for the main program's own errors: the command line, the output
+   !> directory, a run that could not converge).
+   !>
+   !> msg     [in] the message; trailing blanks are dropped.
+   !> caller  [in] optional: where the error was found.
+   subroutine print_error(msg, caller)
+      character(len=*), intent(in) :: msg
+      character(len=*), intent(in), optional :: caller
+
+      write (error_unit, '(a)') '*ERROR* '//prefix(caller)//trim(msg)
+      flush (error_unit)
+   end subroutine print_error
+
+   !> prefix -- '<caller>: ', or '' without a caller.
+   pure function prefix(caller) result(p)
+      character(len=*), intent(in), optional :: caller
+      character(len=:), allocatable :: p
+
+      p = ''
+      if (present(caller)) p = trim(caller)//': '
+   end function prefix
 
 end module errors

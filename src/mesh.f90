@@ -2,13 +2,18 @@
 !>
 !> Node i carries dofs 4(i-1)+1 .. 4(i-1)+4 = (v, v', w, w'): node-by-node
 !> numbering, so an element couples 8 consecutive equations (half-band 7).
+!> Other modules address a node's dofs through node_dof and the dof_*
+!> names, never by arithmetic of their own.
 module mesh
    use kinds, only: dp
    implicit none
    private
-   public :: graded_nodes, element_dofs, dofs_per_node, half_band
+   public :: graded_nodes, element_dofs, node_dof, is_slope_dof, dofs_per_node, half_band
+   public :: dof_v, dof_v_slope, dof_w, dof_w_slope
 
    integer, parameter :: dofs_per_node = 4, half_band = 7
+   !> a node's dofs in their order: v, dv/ds, w, dw/ds
+   integer, parameter :: dof_v = 1, dof_v_slope = 2, dof_w = 3, dof_w_slope = 4
 
 contains
 
@@ -33,6 +38,22 @@ contains
       x(1) = -half
       x(n_el + 1) = half
    end subroutine graded_nodes
+
+   !> NODE_DOF: global equation number of dof `which` (dof_v ... dof_w_slope)
+   !> of node `node`.
+   pure integer function node_dof(node, which)
+      integer, intent(in) :: node, which
+      node_dof = dofs_per_node*(node - 1) + which
+   end function node_dof
+
+   !> IS_SLOPE_DOF: .true. for a slope dof (v' or w', dimensionless; its
+   !> conjugate is a moment), .false. for a displacement (v or w).
+   pure logical function is_slope_dof(i)
+      integer, intent(in) :: i
+      integer :: which
+      which = i - dofs_per_node*((i - 1)/dofs_per_node)
+      is_slope_dof = which == dof_v_slope .or. which == dof_w_slope
+   end function is_slope_dof
 
    !> ELEMENT_DOFS: global equation numbers of element e's eight dofs.
    pure function element_dofs(e) result(dofs)

@@ -17,7 +17,7 @@ module model
 
    type :: model_type
       integer :: n_el = 0, n_nodes = 0, n_dof = 0, npt = 0
-      real(dp) :: thickness = 0.0_dp, length = 0.0_dp, youngs = 0.0_dp
+      real(dp) :: thickness = 0.0_dp, youngs = 0.0_dp
       real(dp), allocatable :: x(:)          ! reference node positions
       real(dp), allocatable :: z(:), wz(:)   ! Simpson stations and weights
       real(dp), allocatable :: props(:)      ! UMAT constants
@@ -29,6 +29,11 @@ module model
       real(dp) :: contact_smoothing = 0.0_dp ! delta, mm: smoothed penalty onset
       real(dp) :: friction = 0.0_dp          ! mu
       real(dp) :: friction_eps = 1.0_dp      ! eps of (4.3), mm
+      ! load schedule: locking to lock_depth, then pulling by pull_distance
+      logical :: left_edge_free = .false.    ! v free under the back tension; else clamped
+      real(dp) :: back_tension = 0.0_dp      ! N/mm, on a free left edge
+      real(dp) :: lock_depth = 0.0_dp        ! H at the end of locking, mm
+      real(dp) :: pull_distance = 0.0_dp     ! delta at the end of pulling, mm
    end type model_type
 
    !> What is applied in one increment: prescribed dofs, dead loads, an end
@@ -74,7 +79,6 @@ contains
       m%n_dof = dofs_per_node*m%n_nodes
       m%npt = npt
       m%thickness = h
-      m%length = length
       m%youngs = props(1)
       allocate (m%x(m%n_nodes), m%z(npt), m%wz(npt))
       call graded_nodes(n_el, 0.5_dp*length, beta, m%x)

@@ -21,7 +21,7 @@ module output
    !> Units of the files kept open through a run.
    type :: output_files
       character(len=:), allocatable :: dir
-      integer :: lock = -1, pull = -1, summary = -1
+      integer :: lock = -1, pull = -1
       integer :: snapshots = -1, n_snapshots = 0  ! snapshots.dat (&control snapshot_every)
       ! (units from NEWUNIT are negative and never -1: -1 marks a file not open)
    end type output_files

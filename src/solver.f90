@@ -8,28 +8,31 @@ module solver
    use kinds, only: dp
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use hermite, only: n_gauss, gauss_xi, gauss_wt, hermite_shape
-   use mesh, only: element_dofs, half_band, dofs_per_node
+   use mesh, only: element_dofs, half_band, node_dof, dof_v_slope, dof_w_slope, is_slope_dof
    use band, only: band_matrix, band_init, band_zero, band_add, band_fix_dof, band_solve
    use element, only: element_internal, v_dofs, w_dofs
    use section, only: section_localization, section_update_zbar, ih_statev
    use model, only: model_type, state_type, load_type
-   use contact, only: contact_station, contact_commit
+   use contact, only: contact_station, contact_commit, ich_active
    implicit none
    private
    public :: newton_result, assemble, newton_solve, commit_state, max_newton_history, &
-             newton_ok, newton_diverged, newton_cutback, newton_singular
+             newton_ok, newton_diverged, newton_cutback, newton_singular, newton_solve_failed
 
    integer, parameter :: max_newton_history = 100
+   !> newton_result%status: converged; diverged or too many iterations; a
+   !> material point or contact station asked for a smaller increment; the
+   !> tangent was singular; the linear solve failed otherwise (a size or
+   !> argument error: not cured by a smaller increment)
    integer, parameter :: newton_ok = 0, newton_diverged = 1, newton_cutback = 2, &
-                         newton_singular = 3
+                         newton_singular = 3, newton_solve_failed = 4
 
    !> What one Newton solve did.
    type :: newton_result
       integer :: status = newton_ok
       integer :: iterations = 0
       real(dp) :: residual(0:max_newton_history) = 0.0_dp ! scaled residual per iteration
-      real(dp) :: correction = 0.0_dp                      ! last scaled correction
-      integer :: singular_pivot = 0
+      integer :: solve_info = 0                            ! band_solve's info when it failed
       real(dp) :: pnewdt = 1.0_dp                          ! cut factor asked for (1: none)
       ! with count_states: the material points plastic in each iterate (their
       ! equivalent plastic strain above the converged one), and those that
@@ -89,7 +92,7 @@ contains
                                        m%friction_eps, p, s%cn(:, ig, e, it), &
                                        s%c1(:, ig, e, it), fc, kc)
                   ! a station out of contact contributes nothing
-                  if (s%c1(1, ig, e, it) < 0.5_dp) cycle
+                  if (s%c1(ich_active, ig, e, it) < 0.5_dp) cycle
                   s%n_contact = s%n_contact + 1
                   ! the tool pushes the sheet with fc: it enters r = f_int - f_ext with -
                   re = re - dv*matmul(fc, nm)
@@ -116,7 +119,7 @@ contains
       type(band_matrix), intent(inout) :: kb
       real(dp) :: a, b, q, dth(2), d2th(2, 2)
       integer :: dofs(2), stat
-      dofs = [dofs_per_node*(n - 1) + 2, dofs_per_node*(n - 1) + 4]
+      dofs = [node_dof(n, dof_v_slope), node_dof(n, dof_w_slope)]
       a = 1.0_dp + u(dofs(1))
       b = u(dofs(2))
       q = a*a + b*b
@@ -240,21 +243,20 @@ contains
          end do
          call band_solve(kb, du, info)
          if (info /= 0) then
-            res%status = newton_singular
-            res%singular_pivot = info
+            res%status = merge(newton_singular, newton_solve_failed, info > 0)
+            res%solve_info = info
             return
          end if
          g0 = dot_product(du, merge(0.0_dp, r, ld%fixed))
          s%u1 = s%u1 + du
          cnorm = 0.0_dp
          do i = 1, size(du)
-            if (mod(i, 2) == 1) then
-               cnorm = max(cnorm, abs(du(i))/m%thickness)
-            else
+            if (is_slope_dof(i)) then
                cnorm = max(cnorm, abs(du(i)))
+            else
+               cnorm = max(cnorm, abs(du(i))/m%thickness)
             end if
          end do
-         res%correction = cnorm
       end do
       res%status = newton_diverged
    end subroutine newton_solve
@@ -270,7 +272,7 @@ contains
       rnorm = 0.0_dp
       do i = 1, size(r)
          if (ld%fixed(i)) cycle
-         if (mod(i, 2) == 0) then
+         if (is_slope_dof(i)) then
             rnorm = rnorm + (r(i)/m%thickness)**2
          else
             rnorm = rnorm + r(i)**2

@@ -1,10 +1,11 @@
 !> summary -- the run's findings as 'key = value' lines (summary.txt).
 module summary
    use kinds, only: dp
-   use deck, only: deck_type
+   use controls, only: controls_type
    use section, only: ih_zbar
    use model, only: model_type, state_type
-   use analysis, only: run_record, energy_totals
+   use record, only: run_record, run_ok
+   use energy, only: energy_totals
    use output, only: write_summary_line
    implicit none
    private
@@ -83,12 +84,12 @@ contains
    end function summary_value
 
    !> WRITE_SUMMARY: write summary.txt.
-   !>  path [in] file; m, s, d, rec [in] the run; cpu [in] CPU seconds
-   subroutine write_summary(path, m, s, d, rec, cpu)
+   !>  path [in] file; m, s, ctl, rec [in] the run; cpu [in] CPU seconds
+   subroutine write_summary(path, m, s, ctl, rec, cpu)
       character(len=*), intent(in) :: path
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
-      type(deck_type), intent(in) :: d
+      type(controls_type), intent(in) :: ctl
       type(run_record), intent(in) :: rec
       real(dp), intent(in) :: cpu
       integer :: u, stat
@@ -99,7 +100,7 @@ contains
       if (stat /= 0) return
       h = m%thickness
       eh = m%youngs*h
-      if (rec%status /= 0) then
+      if (rec%status /= run_ok) then
          status = 'no_convergence'
       else if (rec%localized) then
          status = 'localized'
@@ -108,7 +109,7 @@ contains
       end if
       call steady_force(rec, h, fsteady, steady_at, steady)
       thinning = 1.0_dp - minval(s%hn(m%npt, ih_zbar, :, :) - s%hn(1, ih_zbar, :, :))/h
-      write (u, '(a)') '# drawbead summary: '//trim(d%title), 'status = '//trim(status)
+      write (u, '(a)') '# drawbead summary: '//trim(ctl%title), 'status = '//trim(status)
       write (u, '(a)') 'localization_phase = '//trim(merge(rec%loc_phase, 'none    ', rec%localized))
       call write_summary_line(u, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'pull')
       call write_summary_line(u, 'lock_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'lock')
@@ -122,14 +123,14 @@ contains
       call write_summary_line(u, 'lock_cr_nonlocal_over_h', rec%nl_load_cr/h, &
                               rec%nl_localized .and. rec%nl_phase == 'lock')
       call write_summary_line(u, 's_star_nonlocal_over_h', rec%nl_s_star/h, rec%nl_localized)
-      call write_summary_line(u, 'tearing_length_over_h', d%tearing_length, .true.)
+      call write_summary_line(u, 'tearing_length_over_h', ctl%tearing_length_over_h, .true.)
       call write_summary_line(u, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
       ! the first state bent tighter than fold_curvature: past it the forces
       ! depend on the mesh (a hinge one or two elements wide)
       write (u, '(a)') 'fold_phase = '//trim(merge(rec%fold_phase, 'none    ', rec%folded))
       call write_summary_line(u, 'fold_load_over_h', rec%fold_load/h, rec%folded)
       call write_summary_line(u, 's_fold_over_h', rec%fold_s/h, rec%folded)
-      call write_summary_line(u, 'fold_curvature', d%fold_curvature, .true.)
+      call write_summary_line(u, 'fold_curvature', ctl%fold_curvature, .true.)
       call write_summary_line(u, 'lock_force_over_Eh', rec%lock_force/eh, m%has_tools)
       call write_summary_line(u, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
       call write_summary_line(u, 'final_force_over_Eh', rec%pull_force(max(rec%n_pull, 1))/eh, rec%n_pull > 0)

@@ -17,7 +17,7 @@ if [ "$status" -ne 0 ]; then
     echo "FAIL fold_bead_a: exit status $status"
     exit 1
 fi
-if [ "$(grep -c '^\*WARNING\* the sheet folds: |rho| h = ' "$out/err")" -ne 1 ]; then
+if [ "$(grep -c '^\*WARNING\* check_fold: the sheet folds: |rho| h = ' "$out/err")" -ne 1 ]; then
     echo "FAIL fold_bead_a: expected one fold warning on stderr, got:"
     cat "$out/err"
     exit 1

@@ -13,7 +13,7 @@ if [ "$status" -ne 0 ]; then
     echo "FAIL soft_penalty: exit status $status"
     exit 1
 fi
-if ! grep -q '^\*WARNING\* penetration .*> 0.05h' "$out/err"; then
+if ! grep -q '^\*WARNING\* run_phase: penetration .*> 0.05h' "$out/err"; then
     echo "FAIL soft_penalty: no penetration warning on stderr"
     exit 1
 fi

@@ -1,0 +1,238 @@
+!> deck_scan -- the text of a namelist deck, before any namelist read:
+!> where each group starts and ends, and the `name = value` assignments of a
+!> group's body.  The deck reader (module deck_reader) uses it to find
+!> unknown and repeated groups and to re-read a failing group one
+!> assignment at a time, so that every bad variable is named.
+!>
+!> Syntax honoured: outside groups '!' starts a comment and anything but
+!> '&name' is skipped; inside a group quotes (' or ", doubled to escape) and
+!> '!' comments are honoured and an unquoted '/' ends the group.
+module deck_scan
+   use errors, only: error_list, add_error
+   use text, only: lower
+   implicit none
+   private
+   public :: group_text, scan_groups, split_assignments, clip, strip_separators, is_letter
+
+   !> The text of one group as found in the deck file.
+   type :: group_text
+      logical :: present = .false.
+      logical :: terminated = .false.
+      character(len=:), allocatable :: body     ! between '&name' and '/'
+   end type group_text
+
+contains
+
+
+   !> scan_groups -- find the text of each known group in a deck.
+   !>
+   !> Outside groups, '!' starts a comment and anything but '&name' is
+   !> skipped. Inside a group, quotes (' or ", doubled to escape) and '!'
+   !> comments are honoured and an unquoted '/' ends the group. Line ends,
+   !> tabs and comments become blanks in the body.
+   !>
+   !> text   [in]     the whole deck.
+   !> path   [in]     deck name, for messages.
+   !> names  [in]     the known groups, lower case, without '&'.
+   !> found  [out]    per entry of names: present, terminated, body
+   !>                 (of the first occurrence).
+   !> errs   [in,out] unknown and repeated groups are appended.
+   subroutine scan_groups(text, path, names, found, errs)
+      character(len=*), intent(in) :: text
+      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: names(:)
+      type(group_text), intent(out) :: found(size(names))
+      type(error_list), intent(inout) :: errs
+
+      character(len=:), allocatable :: body, name
+      character(len=1) :: c, quote
+      logical :: in_group
+      integer :: i, j, n, g, current
+
+      n = len(text)
+      i = 1
+      name = ''
+      in_group = .false.
+      current = 0
+      quote = ' '
+      body = ''
+      do while (i <= n)
+         c = text(i:i)
+         if (.not. in_group) then
+            if (c == '!') then
+               i = end_of_line(text, i)
+            else if (c == '&') then
+               j = i + 1
+               do while (j <= n)
+                  if (.not. is_name_char(text(j:j))) exit
+                  j = j + 1
+               end do
+               name = lower(text(i + 1:j - 1))
+               if (len(name) > 0 .and. name /= 'end') then
+                  current = 0
+                  do g = 1, size(names)
+                     if (name == trim(names(g))) current = g
+                  end do
+                  if (current == 0) then
+                     call add_error(errs, "deck '"//trim(path)//"', group &"//name// &
+                                    ": unknown group (the groups are &control, &sheet, " &
+                                    //"&material, &tools and &loading)")
+                  else if (found(current)%present) then
+                     call add_error(errs, "deck '"//trim(path)//"', group &"//name// &
+                                    ": appears more than once (only the first is read)")
+                     current = 0
+                  else
+                     found(current)%present = .true.
+                  end if
+                  in_group = .true.
+                  quote = ' '
+                  body = ''
+               end if
+               i = j
+               cycle
+            end if
+         else
+            if (quote /= ' ') then
+               if (c == quote) quote = ' '
+            else if (c == '"' .or. c == "'") then
+               quote = c
+            else if (c == '!') then
+               i = end_of_line(text, i)
+               body = body//' '
+               cycle
+            else if (c == '/') then
+               if (current > 0) then
+                  found(current)%terminated = .true.
+                  found(current)%body = body
+               end if
+               in_group = .false.
+               i = i + 1
+               cycle
+            end if
+            if (iachar(c) < 32) c = ' '
+            body = body//c
+         end if
+         i = i + 1
+      end do
+      if (in_group .and. current > 0) found(current)%body = body
+      do g = 1, size(found)
+         if (.not. allocated(found(g)%body)) found(g)%body = ''
+      end do
+   end subroutine scan_groups
+
+
+   !> split_assignments -- locate the `name = value` assignments of a body.
+   !>
+   !> body    [in]  group text.
+   !> starts  [out] first character of each assignment's name.
+   !> eqs     [out] position of each assignment's unquoted '='.
+   pure subroutine split_assignments(body, starts, eqs)
+      character(len=*), intent(in) :: body
+      integer, allocatable, intent(out) :: starts(:), eqs(:)
+
+      character(len=1) :: c, quote
+      integer :: i, j, depth, n
+
+      allocate (starts(0), eqs(0))
+      quote = ' '
+      do i = 1, len(body)
+         c = body(i:i)
+         if (quote /= ' ') then
+            if (c == quote) quote = ' '
+            cycle
+         end if
+         if (c == '"' .or. c == "'") then
+            quote = c
+            cycle
+         end if
+         if (c /= '=') cycle
+         ! walk back over blanks, then over the name and any (subscripts)
+         j = i - 1
+         do while (j >= 1)
+            if (body(j:j) /= ' ') exit
+            j = j - 1
+         end do
+         n = j
+         depth = 0
+         do while (j >= 1)
+            if (body(j:j) == ')') then
+               depth = depth + 1
+            else if (body(j:j) == '(') then
+               depth = depth - 1
+            else if (depth == 0 .and. .not. is_name_char(body(j:j)) .and. body(j:j) /= '%') then
+               exit
+            end if
+            j = j - 1
+         end do
+         if (j + 1 > n) then
+            starts = [starts, i]       ! no name: an empty one, reported by the caller
+         else
+            starts = [starts, j + 1]
+         end if
+         eqs = [eqs, i]
+      end do
+   end subroutine split_assignments
+
+
+   !> clip -- text shortened to at most 60 characters for messages.
+   pure function clip(s) result(r)
+      character(len=*), intent(in) :: s      !< [in] any text
+      character(len=:), allocatable :: r
+
+      if (len_trim(s) > 60) then
+         r = s(1:57)//'...'
+      else
+         r = trim(s)
+      end if
+   end function clip
+
+
+   !> strip_separators -- text without surrounding blanks and commas.
+   pure function strip_separators(s) result(r)
+      character(len=*), intent(in) :: s      !< [in] any text
+      character(len=:), allocatable :: r
+
+      integer :: i, j
+
+      i = verify(s, ' ,')
+      j = verify(s, ' ,', back=.true.)
+      if (i == 0) then
+         r = ''
+      else
+         r = s(i:j)
+      end if
+   end function strip_separators
+
+
+   !> end_of_line -- index of the next newline at or after i (or len+1).
+   pure function end_of_line(text, i) result(j)
+      character(len=*), intent(in) :: text   !< [in] the text
+      integer, intent(in) :: i               !< [in] start position
+      integer :: j
+
+      j = index(text(i:), achar(10))
+      if (j == 0) then
+         j = len(text) + 1
+      else
+         j = i + j - 1
+      end if
+   end function end_of_line
+
+
+   !> is_name_char -- .true. for a letter, digit or underscore.
+   pure function is_name_char(c) result(yes)
+      character(len=1), intent(in) :: c      !< [in] one character
+      logical :: yes
+
+      yes = is_letter(c) .or. (c >= '0' .and. c <= '9') .or. c == '_'
+   end function is_name_char
+
+
+   !> is_letter -- .true. for A-Z or a-z.
+   pure function is_letter(c) result(yes)
+      character(len=1), intent(in) :: c      !< [in] one character
+      logical :: yes
+
+      yes = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
+   end function is_letter
+end module deck_scan

@@ -1,0 +1,71 @@
+!> energy -- the work and energy bookkeeping of a run: the external work,
+!> summed increment by increment, against the energy stored and dissipated
+!> in the sheet and the contact (summary.txt's energy_* lines; their balance
+!> checks the whole chain of element, section, material and contact).
+module energy
+   use kinds, only: dp
+   use hermite, only: n_gauss, gauss_wt
+   use section, only: ih_sse, ih_spd
+   use contact, only: penalty_energy, ich_penetration, ich_dissipation
+   use model, only: model_type, state_type, load_type
+   use record, only: run_record
+   implicit none
+   private
+   public :: energy_totals, add_increment_work
+
+contains
+
+   !> ADD_INCREMENT_WORK: external work of one converged increment,
+   !> trapezoidal: the reactions on the prescribed motions (the pull
+   !> N d(delta), an edge following the binder), the rising lower tool
+   !> (F dH while locking) and the dead loads.
+   !>  ld       [in]     the increment's load (which dofs are prescribed)
+   !>  r        [in]     residual at the end of the increment (reactions at
+   !>                    the prescribed dofs)
+   !>  du       [in]     the increment's motion u - u_prev
+   !>  tool_work [in]    the lower tool's work F dH of the increment (0 when
+   !>                    pulling)
+   !>  rec      [in,out] work and the reactions kept for the next increment
+   subroutine add_increment_work(ld, r, du, tool_work, rec)
+      type(load_type), intent(in) :: ld
+      real(dp), intent(in) :: r(:), du(:), tool_work
+      type(run_record), intent(inout) :: rec
+      if (.not. allocated(rec%reactions)) then
+         allocate (rec%reactions(size(r)))
+         rec%reactions = 0.0_dp
+      end if
+      rec%work = rec%work + 0.5_dp*dot_product(merge(rec%reactions + r, 0.0_dp, ld%fixed), du) &
+                 + dot_product(ld%f_ext, du)
+      rec%work = rec%work + tool_work
+      rec%reactions = r
+   end subroutine add_increment_work
+
+   !> ENERGY_TOTALS: stored and dissipated energies of the converged state per
+   !> unit width (N mm/mm): elastic, plastic (the material's sse and spd
+   !> integrated over the sheet), penalty (k d^2/2 over the contact stations)
+   !> and friction dissipation.
+   !>  m, s    [in]  model and converged state
+   !>  energy  [out] (elastic, plastic, penalty, friction)
+   pure subroutine energy_totals(m, s, energy)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      real(dp), intent(out) :: energy(4)
+      real(dp) :: dv
+      integer :: e, ig, it
+      energy = 0.0_dp
+      do e = 1, m%n_el
+         do ig = 1, n_gauss
+            dv = gauss_wt(ig)*(m%x(e + 1) - m%x(e))
+            energy(1) = energy(1) + dv*dot_product(m%wz, s%hn(:, ih_sse, ig, e))
+            energy(2) = energy(2) + dv*dot_product(m%wz, s%hn(:, ih_spd, ig, e))
+            if (m%has_tools) then
+               do it = 1, 2
+                  energy(3) = energy(3) + dv*penalty_energy(m%penalty, m%contact_smoothing, &
+                                                           s%cn(ich_penetration, ig, e, it))
+                  energy(4) = energy(4) + dv*s%cn(ich_dissipation, ig, e, it)
+               end do
+            end if
+         end do
+      end do
+   end subroutine energy_totals
+end module energy

@@ -1,0 +1,76 @@
+!> record -- what a run has found so far: the tearing and fold points, the
+!> forces, the pull history, the counts and the energy bookkeeping.  Filled
+!> by the increment loop (analysis, tearing, energy) and written to
+!> summary.txt (summary).
+module record
+   use kinds, only: dp
+   implicit none
+   private
+   public :: run_record, run_record_init, record_pull
+   public :: run_ok, run_no_convergence
+
+   !> run_record%status: the run went on to its end (or stopped at tearing),
+   !> or an increment could not converge.
+   integer, parameter :: run_ok = 0, run_no_convergence = 2
+
+   !> What the run has found so far (written to summary.txt).
+   type :: run_record
+      ! the paper's pointwise criterion (3.1)
+      logical :: localized = .false.
+      character(len=8) :: loc_phase = ''
+      real(dp) :: load_cr = 0.0_dp, s_star = 0.0_dp
+      ! the mesh-objective criterion (strain averaged over tearing_length)
+      logical :: nl_localized = .false.
+      character(len=8) :: nl_phase = ''
+      real(dp) :: nl_load_cr = 0.0_dp, nl_s_star = 0.0_dp
+      real(dp) :: peak_force = 0.0_dp, lock_force = 0.0_dp
+      real(dp) :: last_lift = 0.0_dp
+      integer :: increments = 0, newton_iterations = 0, cutbacks = 0
+      integer :: status = run_ok
+      character(len=200) :: message = ''
+      real(dp), allocatable :: pull_delta(:), pull_force(:)
+      integer :: n_pull = 0
+      real(dp) :: max_penetration = 0.0_dp
+      ! the first converged state folded tighter than fold_curvature (|rho| h)
+      logical :: folded = .false.
+      character(len=8) :: fold_phase = ''
+      real(dp) :: fold_load = 0.0_dp, fold_s = 0.0_dp
+      ! energy bookkeeping (N mm per mm of width): external work so far, the
+      ! force conjugate to the load parameter at the last increment, and the
+      ! work and stored/dissipated energies when pulling started
+      real(dp) :: work = 0.0_dp, work_pull_start = 0.0_dp
+      real(dp) :: last_conjugate = 0.0_dp
+      real(dp), allocatable :: reactions(:)      ! residual (reactions at fixed dofs), last increment
+      real(dp) :: energy_pull_start(4) = 0.0_dp
+   end type run_record
+
+contains
+
+   !> RUN_RECORD_INIT: empty record with room for the pull history.
+   !>  rec  [out] the record
+   subroutine run_record_init(rec)
+      type(run_record), intent(out) :: rec
+      allocate (rec%pull_delta(1024), rec%pull_force(1024))
+   end subroutine run_record_init
+
+   !> RECORD_PULL: append (delta, N) to the pull history, growing it as needed.
+   !>  rec    [in,out] the record
+   !>  delta  [in]     pull distance, mm
+   !>  force  [in]     restraining force N, N/mm
+   subroutine record_pull(rec, delta, force)
+      type(run_record), intent(inout) :: rec
+      real(dp), intent(in) :: delta, force
+      real(dp), allocatable :: tmp(:)
+      if (rec%n_pull == size(rec%pull_delta)) then
+         allocate (tmp(2*rec%n_pull))
+         tmp(1:rec%n_pull) = rec%pull_delta
+         call move_alloc(tmp, rec%pull_delta)
+         allocate (tmp(2*rec%n_pull))
+         tmp(1:rec%n_pull) = rec%pull_force
+         call move_alloc(tmp, rec%pull_force)
+      end if
+      rec%n_pull = rec%n_pull + 1
+      rec%pull_delta(rec%n_pull) = delta
+      rec%pull_force(rec%n_pull) = force
+   end subroutine record_pull
+end module record

@@ -1,0 +1,194 @@
+!> setup -- the deck turned into the model and the controls of a run:
+!> the material constants (the UMAT props, with the hardening curve file
+!> read), the tools (the rectangular builder or the profile files), the
+!> contact constants, the load schedule and the step controls.  Every
+!> problem found here (curve file, profile files, tool geometry) joins the
+!> deck's errors in the one error list, so that a run reports them all
+!> together; nothing here stops.  After set-up nothing below the main
+!> program uses the deck.
+module setup
+   use kinds, only: dp
+   use errors, only: error_list, add_error
+   use text, only: lower, file_exists
+   use deck, only: deck_type
+   use controls, only: controls_type
+   use model, only: model_type, model_init
+   use material_j2, only: read_curve_file, law_swift, law_voce, law_table
+   use tools, only: tool_type, build_rectangular_bead, read_profile
+   implicit none
+   private
+   public :: setup_run, material_constants
+
+contains
+
+   !> SETUP_RUN: model and controls of a deck.
+   !>  d     [in]     the deck as read and checked by read_deck
+   !>  m     [out]    the model: mesh, material, tools, contact, schedule;
+   !>                 complete only when no error was added
+   !>  ctl   [out]    the step and output controls
+   !>  errs  [in,out] errors in the files the deck names and in the tool
+   !>                 geometry are appended.  With errors already in the
+   !>                 list (a bad deck) the files are still read and checked
+   !>                 where they exist, but nothing is built from values
+   !>                 that may be out of range.
+   subroutine setup_run(d, m, ctl, errs)
+      type(deck_type), intent(in) :: d
+      type(model_type), intent(out) :: m
+      type(controls_type), intent(out) :: ctl
+      type(error_list), intent(inout) :: errs
+
+      real(dp), allocatable :: props(:)
+      type(tool_type) :: upper, lower_tool
+      logical :: deck_ok
+      real(dp) :: h
+
+      deck_ok = errs%count == 0
+      call material_constants(d, props, errs)
+      call tools_of_deck(d, deck_ok, upper, lower_tool, errs)
+      call controls_of_deck(d, ctl)
+      if (errs%count > 0) return
+
+      h = d%thickness
+      call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, props)
+      m%has_tools = d%bead /= 'none'
+      if (m%has_tools) then
+         m%tool(1) = upper
+         m%tool(2) = lower_tool
+      end if
+      ! contact (2.18)-(2.23): the penalty is given as k h / E, the lengths
+      ! in units of h
+      m%penalty = d%penalty*d%youngs_modulus/h
+      m%friction = d%friction
+      m%contact_smoothing = d%contact_smoothing*h
+      m%friction_eps = d%friction_eps*h
+      m%left_edge_free = d%left_edge == 'free'
+      m%back_tension = d%back_tension
+      m%lock_depth = d%lock_depth
+      m%pull_distance = d%pull_distance
+   end subroutine setup_run
+
+   !> MATERIAL_CONSTANTS: the UMAT props vector of a deck, the tabulated
+   !> curve read from its file for hardening = 'table'.
+   !>  d      [in]     a deck (choices lower case)
+   !>  props  [out]    props(1) = E, props(2) = nu, props(3) = R,
+   !>                  props(4) = law id (law_swift, law_voce, law_table;
+   !>                  0 for an unknown law, which the deck's checks report);
+   !>                  swift: props(5:7) = K, eps0, n;
+   !>                  voce:  props(5:7) = sigma0, Q, b;
+   !>                  table: props(5) = m, props(6:5+2m) = ep_1, sigma_1, ...,
+   !>                         ep_m, sigma_m (m = 0 when the file is unusable).
+   !>  errs   [in,out] the curve file's errors are appended (naming the
+   !>                  deck, group and variable); a missing file is the
+   !>                  deck's error, not repeated here.
+   subroutine material_constants(d, props, errs)
+      type(deck_type), intent(in) :: d
+      real(dp), allocatable, intent(out) :: props(:)
+      type(error_list), intent(inout) :: errs
+
+      real(dp), allocatable :: ep(:), sigma(:)
+      character(len=1024) :: emsg
+      integer :: i, npt
+
+      select case (trim(lower(adjustl(d%hardening))))
+      case ('swift')
+         props = [d%youngs_modulus, d%poissons_ratio, d%r_value, real(law_swift, dp), &
+                  d%swift_k, d%swift_eps0, d%swift_n]
+      case ('voce')
+         props = [d%youngs_modulus, d%poissons_ratio, d%r_value, real(law_voce, dp), &
+                  d%voce_sigma0, d%voce_q, d%voce_b]
+      case ('table')
+         npt = 0
+         if (len_trim(d%curve_file) > 0 .and. file_exists(d%curve_file)) then
+            emsg = ''
+            call read_curve_file(trim(d%curve_file), ep, sigma, emsg)
+            if (len_trim(emsg) > 0) then
+               call add_error(errs, "deck '"//trim(d%deck_file)//"', group &material, "// &
+                              'variable curve_file: '//trim(emsg))
+            else
+               npt = size(ep)
+            end if
+         end if
+         allocate (props(5 + 2*npt))
+         props(1:5) = [d%youngs_modulus, d%poissons_ratio, d%r_value, real(law_table, dp), &
+                       real(npt, dp)]
+         do i = 1, npt
+            props(4 + 2*i) = ep(i)
+            props(5 + 2*i) = sigma(i)
+         end do
+      case default
+         props = [d%youngs_modulus, d%poissons_ratio, d%r_value, 0.0_dp, &
+                  0.0_dp, 0.0_dp, 0.0_dp]
+      end select
+   end subroutine material_constants
+
+   !> TOOLS_OF_DECK: the two tools: the rectangular bead built from its
+   !> dimensions, or the profile files read.
+   !>  d        [in]     the deck
+   !>  deck_ok  [in]     .false. when the deck has errors: the builder is
+   !>                    then not called (its dimensions may be out of range)
+   !>  upper    [out]    the upper (female, fixed) tool
+   !>  lower    [out]    the lower (male) tool
+   !>  errs     [in,out] geometry and profile-file errors are appended
+   subroutine tools_of_deck(d, deck_ok, upper, lower, errs)
+      type(deck_type), intent(in) :: d
+      logical, intent(in) :: deck_ok
+      type(tool_type), intent(out) :: upper, lower
+      type(error_list), intent(inout) :: errs
+
+      character(len=300) :: errmsg
+      character(len=:), allocatable :: ctx
+      real(dp) :: margin
+
+      ctx = "deck '"//trim(d%deck_file)//"', group &tools: "
+      errmsg = ''
+      select case (d%bead)
+      case ('rectangular')
+         if (.not. deck_ok) return
+         ! the binder faces reach past the sheet's ends by 10 h, room for it
+         ! to slide
+         margin = 0.5_dp*d%length + 10.0_dp*d%thickness
+         call build_rectangular_bead(d%r1, d%r2, d%b1, d%b2, d%h1, d%h2, -margin, margin, &
+                                     upper, lower, errmsg)
+         if (len_trim(errmsg) > 0) call add_error(errs, ctx//trim(errmsg))
+      case ('profile')
+         if (len_trim(d%upper_profile) > 0 .and. file_exists(d%upper_profile)) then
+            call read_profile(trim(d%upper_profile), upper, errmsg)
+            if (len_trim(errmsg) == 0 .and. upper%side /= 1) errmsg = 'variable upper_profile: '// &
+               trim(d%upper_profile)//' is a lower tool (side lower)'
+            if (len_trim(errmsg) > 0) call add_error(errs, ctx//trim(errmsg))
+         end if
+         errmsg = ''
+         if (len_trim(d%lower_profile) > 0 .and. file_exists(d%lower_profile)) then
+            call read_profile(trim(d%lower_profile), lower, errmsg)
+            if (len_trim(errmsg) == 0 .and. lower%side /= -1) errmsg = 'variable lower_profile: '// &
+               trim(d%lower_profile)//' is an upper tool (side upper)'
+            if (len_trim(errmsg) > 0) call add_error(errs, ctx//trim(errmsg))
+         end if
+      end select
+   end subroutine tools_of_deck
+
+   !> CONTROLS_OF_DECK: the step and output controls of a deck.
+   !>  d    [in]  the deck
+   !>  ctl  [out] the controls
+   pure subroutine controls_of_deck(d, ctl)
+      type(deck_type), intent(in) :: d
+      type(controls_type), intent(out) :: ctl
+
+      ctl%title = d%title
+      ctl%output_dir = d%output_dir
+      ctl%snapshot_every_over_h = d%snapshot_every
+      ctl%log_residuals = d%log_residuals
+      ctl%initial_increment = d%initial_increment
+      ctl%min_increment = d%min_increment
+      ctl%max_increment = d%max_increment
+      ctl%max_iterations = d%max_iterations
+      ctl%tolerance = d%tolerance
+      ctl%max_force_change = d%max_force_change
+      ctl%squeeze_force_change = d%squeeze_force_change
+      ctl%predictor = d%predictor
+      ctl%stop_at_localization = d%stop_at_localization
+      ctl%tearing_length_over_h = d%tearing_length
+      ctl%fold_curvature = d%fold_curvature
+   end subroutine controls_of_deck
+
+end module setup
