@@ -9,7 +9,8 @@ program drawbead
    use errors, only: error_list, report_errors
    use deck, only: deck_type, read_deck, echo_deck, material_props
    use model, only: model_type, state_type, model_init, state_init
-   use tools, only: build_rectangular_bead, read_profile
+   use bead_builder, only: build_rectangular_bead
+   use profile_io, only: read_profile
    use analysis, only: run_record, run_record_init, run_phase
    use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools, &
                      open_snapshots
