@@ -17,13 +17,9 @@
 !> switch the tangent between 0 and k from one Newton iterate to the next.
 !> delta = 0 is the paper's sharp onset.  Penalty energy: k G(d), G' = g.
 !>
-!> History column ch(n_chist) (model module):
-!>   1 active (1: in contact at the last converged state)   2 u_T
-!>   3 u_T^m (largest committed u_T)   4 sense of first sliding (+1, -1, 0 unknown)
-!>   5,6 position relative to the tool   7 friction dissipation (per ref length)
-!>   8 signed penetration d (< 0: the gap)   9 friction traction along t (signed)
-!>   10 the tool piece nearest at the last search (a hint that speeds up the
-!>      next one; 0 none)
+!> The contact history of a station is a column ch(n_chist) (one per Gauss
+!> station and tool in the model's state); its entries are named by the
+!> ich_* constants below, which every module uses instead of numbers.
 
 module contact
    use kinds, only: dp
@@ -32,6 +28,31 @@ module contact
    implicit none
    private
    public :: contact_station, contact_commit, penalty_energy
+   public :: n_chist, ich_active, ich_slip, ich_slip_max, ich_sense, ich_position, &
+             ich_dissipation, ich_penetration, ich_traction, ich_hint
+
+   !> Layout of a station's contact history column ch(n_chist):
+   !> 1 when the station was in contact at the last converged state, else 0
+   integer, parameter :: ich_active = 1
+   !> u_T, the distance slid along the sense of first sliding, mm
+   integer, parameter :: ich_slip = 2
+   !> u_T^m, the largest committed u_T (the reversal point of (2.21)), mm
+   integer, parameter :: ich_slip_max = 3
+   !> sense of first sliding along the tool's tangent: +1, -1, 0 unknown
+   integer, parameter :: ich_sense = 4
+   !> position (x, y) relative to the tool, mm: two entries,
+   !> ch(ich_position:ich_position + 1)
+   integer, parameter :: ich_position = 5
+   !> friction dissipation per unit reference length, N
+   integer, parameter :: ich_dissipation = 7
+   !> signed penetration d (< 0: minus the gap), mm
+   integer, parameter :: ich_penetration = 8
+   !> friction traction along the tangent t (signed), N/mm
+   integer, parameter :: ich_traction = 9
+   !> the tool piece nearest at the last search (tool_gap's hint; 0 none)
+   integer, parameter :: ich_hint = 10
+   !> length of the column
+   integer, parameter :: n_chist = 10
 
 contains
 
@@ -43,8 +64,8 @@ contains
    !>  mu     [in]  friction coefficient
    !>  eps_f  [in]  regularization length eps of (4.3)
    !>  p      [in]  current position of the station
-   !>  chn    [in]  converged history
-   !>  ch1    [out] trial history
+   !>  chn    [in]  converged history column (layout: the ich_* constants)
+   !>  ch1    [out] trial history column
    !>  f      [out] force on the sheet per unit reference length
    !>  kf     [out] d f / d p (non-symmetric with friction)
    pure subroutine contact_station(tool, shift, k, delta, mu, eps_f, p, chn, ch1, f, kf)
@@ -55,16 +76,16 @@ contains
       real(dp) :: dut(2)
       integer :: seg
       prel = [p(1), p(2) - shift]
-      call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg, hint=nint(chn(10)))
+      call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg, hint=nint(chn(ich_hint)))
       f = 0.0_dp
       kf = 0.0_dp
       ch1 = 0.0_dp
-      ch1(5:6) = prel
-      ch1(7) = chn(7)
-      ch1(8) = d
-      ch1(10) = real(seg, dp)
+      ch1(ich_position:ich_position + 1) = prel
+      ch1(ich_dissipation) = chn(ich_dissipation)
+      ch1(ich_penetration) = d
+      ch1(ich_hint) = real(seg, dp)
       if (d <= 0.0_dp) return
-      ch1(1) = 1.0_dp
+      ch1(ich_active) = 1.0_dp
       ! normal part: f = pn n with pn = k g(d), dd/dp = -n, dn/dp = curv (I - n n^T)
       if (d < delta) then
          pn = k*d*d/(2.0_dp*delta)
@@ -77,28 +98,28 @@ contains
       kf = -dpn*outer(n, n) + pn*curv*outer(t, t)
       ! friction acts once the station's contact history has started, i.e.
       ! it was in contact at the last converged state (DESIGN §6)
-      if (mu <= 0.0_dp .or. chn(1) < 0.5_dp) return
+      if (mu <= 0.0_dp .or. chn(ich_active) < 0.5_dp) return
       ! friction: slip since the last converged state, measured along t;
       ! d(ds)/dp = t (1 - curv n.(p - p_old)) because t turns on an arc
-      ds = dot_product(t, prel - chn(5:6))
-      dslip = t*(1.0_dp - curv*dot_product(n, prel - chn(5:6)))
-      if (abs(chn(4)) < 0.5_dp) then
+      ds = dot_product(t, prel - chn(ich_position:ich_position + 1))
+      dslip = t*(1.0_dp - curv*dot_product(n, prel - chn(ich_position:ich_position + 1)))
+      if (abs(chn(ich_sense)) < 0.5_dp) then
          ! in contact, not slid yet: the first non-zero slip sets the sense
          sense = merge(1.0_dp, -1.0_dp, ds >= 0.0_dp)
          ut = abs(ds)
          dut = sense*dslip
       else
-         sense = chn(4)
-         ut = chn(2) + sense*ds
+         sense = chn(ich_sense)
+         ut = chn(ich_slip) + sense*ds
          dut = sense*dslip
       end if
-      ch1(2) = ut
-      ch1(3) = chn(3)
-      ch1(4) = sense
-      call friction_law(ut, chn(3), eps_f, fr, dfr)
+      ch1(ich_slip) = ut
+      ch1(ich_slip_max) = chn(ich_slip_max)
+      ch1(ich_sense) = sense
+      call friction_law(ut, chn(ich_slip_max), eps_f, fr, dfr)
       tt = mu*pn*fr*sense
-      ch1(9) = tt
-      ch1(7) = chn(7) + 0.5_dp*(chn(9) + tt)*ds
+      ch1(ich_traction) = tt
+      ch1(ich_dissipation) = chn(ich_dissipation) + 0.5_dp*(chn(ich_traction) + tt)*ds
       f = f - tt*t
       ! d(tt t)/dp = t (mu sense)(fr dpn dd/dp + pn dfr dut) + tt dt/dp,
       ! dd/dp = -n, dt/dp = -curv n t^T
@@ -108,9 +129,10 @@ contains
    !> CONTACT_COMMIT: at convergence, start or continue a station's history.
    !> A station entering contact starts with u_T = 0 and an unknown sense;
    !> u_T^m keeps the largest committed u_T (the reversal point of (2.21)).
+   !>  ch [in,out] a station's history column: the trial state being committed
    pure subroutine contact_commit(ch)
       real(dp), intent(inout) :: ch(:)
-      if (ch(1) > 0.5_dp) ch(3) = max(ch(3), ch(2))
+      if (ch(ich_active) > 0.5_dp) ch(ich_slip_max) = max(ch(ich_slip_max), ch(ich_slip))
    end subroutine contact_commit
 
    !> PENALTY_ENERGY: stored energy k G(d) of a station penetrating by d
@@ -127,6 +149,7 @@ contains
       end if
    end function penalty_energy
 
+   !> OUTER: the outer product a b^T of two 2-vectors.
    pure function outer(a, b) result(c)
       real(dp), intent(in) :: a(2), b(2)
       real(dp) :: c(2, 2)

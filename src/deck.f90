@@ -41,7 +41,7 @@ module deck
    use kinds, only: dp
    use errors, only: error_list, add_error, warn
    use text, only: lower, num, itoa, file_exists
-   use tools, only: bead_a_over_h
+   use bead_builder, only: bead_a_over_h
    implicit none
    private
    public :: deck_type, group_names, resolve_defaults, validate_deck

@@ -6,14 +6,12 @@ module model
    use mesh, only: graded_nodes, dofs_per_node
    use section, only: n_hist, section_init
    use tools, only: tool_type
+   use contact, only: n_chist, ich_position
    use material_j2, only: max_load_strain
    implicit none
    private
    public :: model_type, state_type, load_type, model_init, state_init, load_init, &
-             n_chist, gauss_position
-
-   !> contact history per Gauss station and tool (layout in module contact)
-   integer, parameter :: n_chist = 10
+             gauss_position
 
    type :: model_type
       integer :: n_el = 0, n_nodes = 0, n_dof = 0, npt = 0
@@ -108,7 +106,7 @@ contains
       do e = 1, m%n_el
          do ig = 1, n_gauss
             ! the flat sheet at y = 0 (relative to both tools at H = 0)
-            s%cn(5, ig, e, :) = gauss_position(m, e, ig)
+            s%cn(ich_position, ig, e, :) = gauss_position(m, e, ig)
          end do
       end do
       s%c1 = s%cn

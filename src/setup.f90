@@ -14,7 +14,9 @@ module setup
    use controls, only: controls_type
    use model, only: model_type, model_init
    use material_j2, only: read_curve_file, law_swift, law_voce, law_table
-   use tools, only: tool_type, build_rectangular_bead, read_profile
+   use tools, only: tool_type
+   use bead_builder, only: build_rectangular_bead
+   use profile_io, only: read_profile
    implicit none
    private
    public :: setup_run, material_constants

@@ -1,6 +1,8 @@
 !> tools -- rigid tools as chains of straight segments and circular arcs:
-!> signed distance queries for the penalty contact (2.18)-(2.20), the
-!> rectangular bead builder of Fig. 3, and profile files.
+!> construction and validation of a chain, and the signed distance queries
+!> of the penalty contact (2.18)-(2.20).  The rectangular bead of Fig. 3 is
+!> built by module bead_builder, profile files are read and written by
+!> module profile_io.
 !>
 !> GEOMETRY.  A tool is a chain of pieces (lines and arcs) describing the
 !> surface that the sheet CENTRELINE touches (the physical tool surface offset
@@ -17,10 +19,10 @@
 !> therefore cover the whole sheet span with room for the sheet's sliding;
 !> the builders extend the binder faces to the caller's x_min, x_max.
 !> The chain must not intersect itself (not checked).
-!> tool%shift is a rigid upward translation of the tool (the rise H of the
-!> lower tool during locking): a query point (x, y) is compared with the
-!> stored chain at (x, y - shift).  Stored geometry (and profile files)
-!> describe the tool at shift = 0.
+!> A tool is stored at rest.  The lower tool's rise H during locking is not
+!> part of it: the caller queries the stored chain at (x, y - H) (module
+!> contact) and draws it raised by H (module output), so one tool serves
+!> every H.
 !>
 !> SIGN CONVENTIONS of tool_gap (paper (2.18)-(2.20)).  Let q be the point of
 !> the surface closest to p = (x, y), and n the unit normal at q pointing OUT
@@ -70,44 +72,25 @@
 !>    d is continuous everywhere.
 !> On the surface d = 0 exactly for lines (d = -(p - a).n) and to rounding for
 !> arcs (d = sgn (R - |p - c|)).
-!>
-!> PROFILE FILES (docs/PROFILE_FORMAT.md).  Plain text, coordinates in mm at
-!> shift = 0.  '#' starts a comment (whole line or trailing); blank lines are
-!> skipped; keywords are case-insensitive; fields are separated by blanks.
-!>    side upper|lower                   first data line, exactly once
-!>    line x1 y1 x2 y2                   segment from (x1,y1) to (x2,y2)
-!>    arc  x1 y1 x2 y2 xc yc ccw|cw      arc from (x1,y1) to (x2,y2) about the
-!>                                       centre (xc,yc), counter-clockwise or
-!>                                       clockwise (sense is required; an arc
-!>                                       may exceed 180 degrees)
-!> Pieces are listed in chain order, left to right overall.  The radius is
-!> |start - centre|; |end - centre| must agree within 1e-6 relative.  Each
-!> piece must start within 1e-6 mm of the previous piece's end (it is then
-!> snapped onto it).  Errors are reported as '<path>:<line>: <what>'.
 module tools
    use kinds, only: dp, pi
+   use text, only: itoa
    implicit none
    private
    public :: seg_line, seg_arc, segment_type, tool_type
-   public :: line_segment, arc_segment, tool_init
+   public :: line_segment, arc_segment, tool_init, check_chain, radius_tol
    public :: tool_gap, tool_sample, tool_level
-   public :: build_rectangular_bead, bead_a_over_h, bead_b_over_h
-   public :: read_profile, write_profile
 
    !> kinds of piece
    integer, parameter :: seg_line = 1, seg_arc = 2
-
-   !> Paper's bead dimensions in units of the sheet thickness h, in the
-   !> argument order of build_rectangular_bead: (R1, R2, B1, B2, H1, H2).
-   real(dp), parameter :: bead_a_over_h(6) = [4.66_dp, 4.66_dp, 4.16_dp, 8.83_dp, 1.56_dp, 5.66_dp]
-   real(dp), parameter :: bead_b_over_h(6) = [4.66_dp, 4.66_dp, 13.0_dp, 18.32_dp, 0.0_dp, 5.66_dp]
 
    !> half-open angle tolerance (rad) under which a junction counts as smooth
    real(dp), parameter :: tangent_tol = 1.0e-6_dp
    !> relative continuity tolerance of tool_init (times the chain's size)
    real(dp), parameter :: cont_tol_rel = 1.0e-9_dp
-   !> profile files: continuity tolerance (mm) and radius agreement (relative)
-   real(dp), parameter :: file_cont_tol = 1.0e-6_dp, file_radius_tol = 1.0e-6_dp
+   !> an arc's end lies on its circle: |end - centre| = |start - centre|
+   !> within this relative tolerance (tool_init and the profile files)
+   real(dp), parameter :: radius_tol = 1.0e-6_dp
 
    !> One piece of a chain.  Lines use p1, p2, t1 (= t2); arcs also centre,
    !> radius, the angles of p1 and p2 about the centre (atan2, in (-pi, pi]),
@@ -125,16 +108,15 @@ module tools
       real(dp) :: box(4) = 0.0_dp                      ! x_min, x_max, y_min, y_max
    end type segment_type
 
-   !> A rigid tool: chain of pieces, material side, rigid upward shift and the
-   !> chain's extent (at shift = 0).  Build with tool_init, a builder or
-   !> read_profile, which validate the chain.
+   !> A rigid tool at rest: chain of pieces, material side and the chain's
+   !> size (the scale of the distance tolerances).  Build with tool_init,
+   !> build_rectangular_bead (bead_builder) or read_profile (profile_io),
+   !> which validate the chain.
    type :: tool_type
       type(segment_type), allocatable :: seg(:)
       integer :: nseg = 0
       integer :: side = 0              ! +1 upper (material above), -1 lower
-      real(dp) :: shift = 0.0_dp       ! rigid upward translation H
-      real(dp) :: x_min = 0.0_dp, x_max = 0.0_dp, y_min = 0.0_dp, y_max = 0.0_dp
-      real(dp) :: size = 0.0_dp        ! max(x_max - x_min, y_max - y_min)
+      real(dp) :: size = 0.0_dp        ! larger side of the chain's bounding box, mm
    end type tool_type
 
 contains
@@ -209,7 +191,7 @@ contains
       end do
    end function arc_segment
 
-   !> TOOL_INIT: validate a chain and store it in a tool (shift = 0).
+   !> TOOL_INIT: validate a chain and store it in a tool.
    !>  tool   [out] the tool
    !>  segs   [in]  pieces in chain order (from line_segment / arc_segment)
    !>  side   [in]  +1 material above (upper/female), -1 below (lower/male)
@@ -227,18 +209,19 @@ contains
       character(len=*), intent(out) :: errmsg
       integer, intent(out), optional :: stat
       integer :: ibad
+      real(dp) :: xmn, xmx, ymn, ymx
       call check_chain(segs, side, cont_tol_rel, .true., errmsg, ibad)
       if (present(stat)) stat = ibad
       if (ibad /= 0) return
       tool%nseg = size(segs)
       tool%seg = segs
       tool%side = side
-      tool%shift = 0.0_dp
-      call chain_extent(segs, tool%x_min, tool%x_max, tool%y_min, tool%y_max)
-      tool%size = max(tool%x_max - tool%x_min, tool%y_max - tool%y_min)
+      call chain_extent(segs, xmn, xmx, ymn, ymx)
+      tool%size = max(xmx - xmn, ymx - ymn)
    end subroutine tool_init
 
-   !> CHECK_CHAIN: the validation behind tool_init.
+   !> CHECK_CHAIN: the validation behind tool_init (also run by read_profile
+   !> with its own continuity tolerance, to name the file line of a bad piece).
    !>  segs     [in]  pieces
    !>  side     [in]  material side
    !>  cont_tol [in]  continuity tolerance: relative to the chain size when
@@ -255,7 +238,6 @@ contains
       integer, intent(out) :: ibad
       real(dp) :: xmn, xmx, ymn, ymx, sz, tol, gap, nsum(2)
       integer :: i, im, n
-      character(len=32) :: num
       errmsg = ''
       ibad = 0
       n = size(segs)
@@ -273,17 +255,16 @@ contains
       sz = max(xmx - xmn, ymx - ymn, tiny(1.0_dp))
       tol = merge(cont_tol*sz, cont_tol, relative)
       do i = 1, n
-         write (num, '(i0)') i
          if (segs(i)%kind /= seg_line .and. segs(i)%kind /= seg_arc) then
-            errmsg = 'piece '//trim(num)//': unknown kind'
+            errmsg = 'piece '//itoa(i)//': unknown kind'
          else if (segs(i)%kind == seg_arc .and. segs(i)%radius <= 1.0e-12_dp*sz) then
-            errmsg = 'piece '//trim(num)//': zero arc radius'
+            errmsg = 'piece '//itoa(i)//': zero arc radius'
          else if (segs(i)%length <= 1.0e-12_dp*sz) then
-            errmsg = 'piece '//trim(num)//': zero length'
+            errmsg = 'piece '//itoa(i)//': zero length'
          else if (segs(i)%kind == seg_arc) then
             if (abs(norm2(segs(i)%p2 - segs(i)%centre) - segs(i)%radius) > &
-                file_radius_tol*segs(i)%radius) then
-               errmsg = 'piece '//trim(num)//': end point not on the arc''s circle '// &
+                radius_tol*segs(i)%radius) then
+               errmsg = 'piece '//itoa(i)//': end point not on the arc''s circle '// &
                         '(|end - centre| /= |start - centre|)'
             end if
          end if
@@ -295,7 +276,7 @@ contains
                   ': does not start where the previous piece ends (gap ', gap, ' mm)'
             else
                nsum = normal_of(segs(im)%t2, side) + normal_of(segs(i)%t1, side)
-               if (norm2(nsum) < 1.0e-6_dp) errmsg = 'piece '//trim(num)// &
+               if (norm2(nsum) < 1.0e-6_dp) errmsg = 'piece '//itoa(i)// &
                   ': turns back on the previous piece (cusp)'
             end if
          end if
@@ -338,7 +319,7 @@ contains
 
    !> TOOL_GAP: signed penetration, normal, curvature factor and tangent of a
    !> point with respect to a tool (conventions in the module header).
-   !>  tool      [in]  the tool (its shift is applied)
+   !>  tool      [in]  the tool (at rest)
    !>  x, y      [in]  current position of the centreline point, mm
    !>  d         [out] signed penetration: > 0 inside the tool material,
    !>                  < 0 outside (minus the distance), 0 on the surface
@@ -366,7 +347,7 @@ contains
       real(dp) :: p(2), best, bound, dist, tol, lbx, lby, tin(2), tout(2), q(2)
       integer :: i, n, clamp, bclamp, ibest
       n = tool%nseg
-      p = [x, y - tool%shift]
+      p = [x, y]
       tol = 1.0e-12_dp*tool%size
       best = huge(1.0_dp)
       ibest = -1
@@ -444,8 +425,8 @@ contains
 
    !> PIECE_DISTANCE: unsigned distance from p to a piece and where the
    !> closest point lies.
-   !>  seg   [in]  the piece (unshifted coordinates)
-   !>  p     [in]  the point (unshifted coordinates)
+   !>  seg   [in]  the piece
+   !>  p     [in]  the point, in the coordinates of the stored chain
    !>  dist  [out] distance to the closest point of the piece
    !>  clamp [out] 0 interior projection, 1 the start point, 2 the end point
    pure subroutine piece_distance(seg, p, dist, clamp)
@@ -557,7 +538,7 @@ contains
    end subroutine vertex_signed
 
    !> TOOL_SAMPLE: n points equally spaced in arc length along the chain
-   !> (ends included, shift applied), for plotting.
+   !> (ends included; the tool at rest), for plotting.
    !>  tool [in]  the tool
    !>  n    [in]  number of points (n >= 1; n = 1 gives the start point)
    !>  xy   [out] xy(:, k) = (x, y) of point k, mm; dimension (2, n)
@@ -583,12 +564,10 @@ contains
          end do
          u = min(max((s - s0)/tool%seg(i)%length, 0.0_dp), 1.0_dp)
          xy(:, k) = piece_point(tool%seg(i), u)
-         xy(2, k) = xy(2, k) + tool%shift
       end do
    end subroutine tool_sample
 
-   !> PIECE_POINT: the point at fraction u (0..1 of the length) of a piece.
-   !> TOOL_LEVEL: height of the tool surface (shift 0) above abscissa x, from
+   !> TOOL_LEVEL: height of the tool surface (at rest) above abscissa x, from
    !> the first piece whose x range contains x, or the end pieces' tangent
    !> lines beyond the chain.  Meant for the binder faces at the sheet's edges.
    !>  tool  [in]  the tool
@@ -632,6 +611,10 @@ contains
       end do
    end function tool_level
 
+   !> PIECE_POINT: the point at fraction u (0..1 of the length) of a piece.
+   !>  seg [in]  the piece
+   !>  u   [in]  fraction of its length (clamped to 0..1)
+   !>  pt  (result) the point, mm
    pure function piece_point(seg, u) result(pt)
       type(segment_type), intent(in) :: seg
       real(dp), intent(in) :: u
@@ -692,395 +675,5 @@ contains
       real(dp) :: t(2)
       t = real(seg%sense, dp)*[-sin(ang), cos(ang)]
    end function arc_tangent
-
-   ! ------------------------------------------------------------------
-   ! builders
-   ! ------------------------------------------------------------------
-
-   !> BUILD_RECTANGULAR_BEAD: the paper's flat bead (Fig. 3, DESIGN section 5)
-   !> as centreline surfaces, both tools at shift = 0, centred on x = 0.
-   !>  r1, r2  [in]  corner radii of the male (lower) and female (upper), mm
-   !>  b1      [in]  half-width of the male's flat top, mm (>= 0)
-   !>  b2      [in]  half-width of the female's groove, mm (> 0)
-   !>  h1      [in]  height of the male's vertical sides, mm (>= 0; 0 = none)
-   !>  h2      [in]  height of the female's vertical walls, mm (>= 0)
-   !>  x_min, x_max [in] ends of both chains (binder faces run out to them);
-   !>                must lie beyond both beads: x_min < -max(b1+r1, b2+r2),
-   !>                x_max > max(b1+r1, b2+r2)
-   !>  upper   [out] female tool, side +1: y = 0 for |x| >= b2+r2, entry arcs
-   !>                about (+-(b2+r2), r2), walls x = +-b2 from y = r2 to
-   !>                h2+r2, groove bottom y = h2+r2 (sharp concave corners)
-   !>  lower   [out] male tool, side -1, at H = 0: top y = 0 for |x| <= b1,
-   !>                corner arcs about (+-b1, -r1), sides x = +-(b1+r1) from
-   !>                y = -r1 down to -(h1+r1), binder y = -(h1+r1) beyond
-   !>                (sharp concave corners).  Set lower%shift = H to raise it.
-   !>  errmsg  [out] blank on success, else the problem
-   !>  stat    [out] optional: 0 on success, 1 on bad input
-   !> Zero-length pieces (b1 = 0, h1 = 0, h2 = 0) are left out.
-   pure subroutine build_rectangular_bead(r1, r2, b1, b2, h1, h2, x_min, x_max, &
-                                          upper, lower, errmsg, stat)
-      real(dp), intent(in) :: r1, r2, b1, b2, h1, h2, x_min, x_max
-      type(tool_type), intent(out) :: upper, lower
-      character(len=*), intent(out) :: errmsg
-      integer, intent(out), optional :: stat
-      type(segment_type) :: s(9)
-      real(dp) :: xo, xi, top, base
-      integer :: n, ist
-      errmsg = ''
-      if (present(stat)) stat = 1
-      if (.not. (r1 > 0.0_dp .and. r2 > 0.0_dp)) then
-         errmsg = 'rectangular bead: radii R1, R2 must be > 0'
-      else if (.not. (b1 >= 0.0_dp .and. b2 > 0.0_dp .and. h1 >= 0.0_dp .and. h2 >= 0.0_dp)) then
-         errmsg = 'rectangular bead: need B1 >= 0, B2 > 0, H1 >= 0, H2 >= 0'
-      else if (.not. (x_min < -max(b1 + r1, b2 + r2) .and. x_max > max(b1 + r1, b2 + r2))) then
-         errmsg = 'rectangular bead: x_min, x_max must lie outside both beads (|x| > max(B1+R1, B2+R2))'
-      end if
-      if (len_trim(errmsg) > 0) return
-      ! female (upper), side +1
-      xo = b2 + r2
-      top = h2 + r2
-      n = 0
-      call push(s, n, line_segment([x_min, 0.0_dp], [-xo, 0.0_dp]))
-      call push(s, n, arc_segment([-xo, 0.0_dp], [-b2, r2], [-xo, r2], .true.))
-      call push(s, n, line_segment([-b2, r2], [-b2, top]))
-      call push(s, n, line_segment([-b2, top], [b2, top]))
-      call push(s, n, line_segment([b2, top], [b2, r2]))
-      call push(s, n, arc_segment([b2, r2], [xo, 0.0_dp], [xo, r2], .true.))
-      call push(s, n, line_segment([xo, 0.0_dp], [x_max, 0.0_dp]))
-      call tool_init(upper, s(1:n), 1, errmsg, ist)
-      if (ist /= 0) then
-         errmsg = 'rectangular bead, female: '//errmsg
-         return
-      end if
-      ! male (lower) at H = 0, side -1
-      xi = b1 + r1
-      base = -(h1 + r1)
-      n = 0
-      call push(s, n, line_segment([x_min, base], [-xi, base]))
-      call push(s, n, line_segment([-xi, base], [-xi, -r1]))
-      call push(s, n, arc_segment([-xi, -r1], [-b1, 0.0_dp], [-b1, -r1], .false.))
-      call push(s, n, line_segment([-b1, 0.0_dp], [b1, 0.0_dp]))
-      call push(s, n, arc_segment([b1, 0.0_dp], [xi, -r1], [b1, -r1], .false.))
-      call push(s, n, line_segment([xi, -r1], [xi, base]))
-      call push(s, n, line_segment([xi, base], [x_max, base]))
-      call tool_init(lower, s(1:n), -1, errmsg, ist)
-      if (ist /= 0) then
-         errmsg = 'rectangular bead, male: '//errmsg
-         return
-      end if
-      if (present(stat)) stat = 0
-   contains
-      !> PUSH: append a piece unless it has zero length.
-      pure subroutine push(list, k, piece)
-         type(segment_type), intent(in out) :: list(:)
-         integer, intent(in out) :: k
-         type(segment_type), intent(in) :: piece
-         if (piece%length <= 0.0_dp) return
-         k = k + 1
-         list(k) = piece
-      end subroutine push
-   end subroutine build_rectangular_bead
-
-   ! ------------------------------------------------------------------
-   ! profile files
-   ! ------------------------------------------------------------------
-
-   !> READ_PROFILE: read a tool from a profile file (format in the module
-   !> header and docs/PROFILE_FORMAT.md).  The tool has shift = 0.
-   !>  path   [in]  file name
-   !>  tool   [out] the tool
-   !>  errmsg [out] blank on success, else '<path>:<line>: <what is wrong>'
-   !>               (or '<path>: ...' for whole-file problems)
-   !>  stat   [out] optional: 0 on success, else 1
-   subroutine read_profile(path, tool, errmsg, stat)
-      character(len=*), intent(in) :: path
-      type(tool_type), intent(out) :: tool
-      character(len=*), intent(out) :: errmsg
-      integer, intent(out), optional :: stat
-      character(len=:), allocatable :: line
-      character(len=64) :: tok(12)
-      character(len=256) :: iomsg
-      type(segment_type), allocatable :: segs(:), tmp(:)
-      integer, allocatable :: lineof(:), itmp(:)
-      integer :: unit, ios, lineno, ntok, nseg, side, nneed, k, ibad
-      real(dp) :: v(6), gap
-      character(len=16) :: key
-      character(len=400) :: what
-      logical :: ok
-
-      errmsg = ''
-      if (present(stat)) stat = 1
-      open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
-      if (ios /= 0) then
-         errmsg = trim(path)//': cannot open: '//trim(iomsg)
-         return
-      end if
-      allocate (segs(16), lineof(16))
-      nseg = 0
-      side = 0
-      lineno = 0
-      what = ''
-      do
-         call get_line(unit, line, ios)
-         if (ios /= 0) exit
-         lineno = lineno + 1
-         call split(line, tok, ntok)
-         if (ntok == 0) cycle
-         key = lower_case(tok(1))
-         if (ntok > size(tok)) then
-            what = 'too many fields'
-         else if (side == 0 .and. key /= 'side') then
-            what = 'the first data line must be ''side upper'' or ''side lower'''
-         else if (key == 'side') then
-            if (side /= 0) then
-               what = '''side'' given twice'
-            else if (ntok /= 2) then
-               what = '''side'' needs one word: upper or lower'
-            else if (lower_case(tok(2)) == 'upper') then
-               side = 1
-            else if (lower_case(tok(2)) == 'lower') then
-               side = -1
-            else
-               what = 'side must be upper or lower, not '''//trim(tok(2))//''''
-            end if
-         else if (key == 'line' .or. key == 'arc') then
-            nneed = merge(4, 6, key == 'line')
-            if (key == 'line' .and. ntok /= 1 + nneed) then
-               write (what, '(a, i0)') '''line'' needs 4 numbers (x1 y1 x2 y2), found ', ntok - 1
-            else if (key == 'arc' .and. ntok /= 2 + nneed) then
-               write (what, '(a, i0)') '''arc'' needs 6 numbers and a sense (x1 y1 x2 y2 xc yc ccw|cw), found ', &
-                  ntok - 1
-            end if
-            if (len_trim(what) == 0) then
-               do k = 1, nneed
-                  call to_real(tok(1 + k), v(k), ok)
-                  if (.not. ok) then
-                     what = 'not a number: '''//trim(tok(1 + k))//''''
-                     exit
-                  end if
-               end do
-            end if
-            if (len_trim(what) == 0 .and. key == 'line') then
-               if (norm2(v(3:4) - v(1:2)) <= 0.0_dp) what = 'zero-length line'
-            else if (len_trim(what) == 0) then
-               if (lower_case(tok(8)) /= 'ccw' .and. lower_case(tok(8)) /= 'cw') then
-                  what = 'arc sense must be ccw or cw, not '''//trim(tok(8))//''''
-               else if (norm2(v(1:2) - v(5:6)) <= 0.0_dp .or. norm2(v(3:4) - v(5:6)) <= 0.0_dp) then
-                  what = 'zero arc radius (an end point is the centre)'
-               else if (abs(norm2(v(3:4) - v(5:6)) - norm2(v(1:2) - v(5:6))) > &
-                        file_radius_tol*norm2(v(1:2) - v(5:6))) then
-                  write (what, '(a, es14.7, a, es14.7, a)') 'radius mismatch: |start - centre| = ', &
-                     norm2(v(1:2) - v(5:6)), ', |end - centre| = ', norm2(v(3:4) - v(5:6)), ' mm'
-               else if (norm2(v(3:4) - v(1:2)) <= 0.0_dp) then
-                  what = 'zero-length arc (start = end)'
-               end if
-            end if
-            if (len_trim(what) == 0 .and. nseg > 0) then
-               gap = norm2(v(1:2) - segs(nseg)%p2)
-               if (gap > file_cont_tol) then
-                  write (what, '(a, i0, a, es10.3, a)') 'piece does not start where the piece on line ', &
-                     lineof(nseg), ' ends (gap ', gap, ' mm)'
-               else
-                  v(1:2) = segs(nseg)%p2
-               end if
-            end if
-            if (len_trim(what) == 0) then
-               if (nseg == size(segs)) then
-                  allocate (tmp(2*nseg), itmp(2*nseg))
-                  tmp(1:nseg) = segs
-                  itmp(1:nseg) = lineof
-                  call move_alloc(tmp, segs)
-                  call move_alloc(itmp, lineof)
-               end if
-               nseg = nseg + 1
-               lineof(nseg) = lineno
-               if (key == 'line') then
-                  segs(nseg) = line_segment(v(1:2), v(3:4))
-               else
-                  segs(nseg) = arc_segment(v(1:2), v(3:4), v(5:6), lower_case(tok(8)) == 'ccw')
-               end if
-            end if
-         else
-            what = 'unknown keyword '''//trim(tok(1))//''' (expected side, line or arc)'
-         end if
-         if (len_trim(what) > 0) exit
-      end do
-      close (unit)
-      if (len_trim(what) > 0) then
-         write (errmsg, '(a, a, i0, a, a)') trim(path), ':', lineno, ': ', trim(what)
-         return
-      end if
-      if (ios > 0) then
-         write (errmsg, '(a, a, i0, a)') trim(path), ':', lineno + 1, ': read error'
-         return
-      end if
-      if (side == 0) then
-         errmsg = trim(path)//': no ''side upper|lower'' line'
-         return
-      end if
-      if (nseg < 1) then
-         errmsg = trim(path)//': no pieces (need at least one line or arc)'
-         return
-      end if
-      call check_chain(segs(1:nseg), side, file_cont_tol, .false., what, ibad)
-      if (ibad /= 0) then
-         ! name the line of the offending piece (the last one for the chain)
-         k = lineof(min(ibad, nseg))
-         write (errmsg, '(a, a, i0, a, a)') trim(path), ':', k, ': ', trim(what)
-         return
-      end if
-      call tool_init(tool, segs(1:nseg), side, what, ibad)
-      if (ibad /= 0) then
-         errmsg = trim(path)//': '//trim(what)
-         return
-      end if
-      if (present(stat)) stat = 0
-   end subroutine read_profile
-
-   !> WRITE_PROFILE: write a tool as a profile file (stored geometry, shift
-   !> not applied), numbers with 17 significant digits so read_profile gives
-   !> back the same pieces.
-   !>  path   [in]  file name (replaced if it exists)
-   !>  tool   [in]  the tool
-   !>  errmsg [out] blank on success, else '<path>: <what>'
-   !>  stat   [out] optional: 0 on success, else 1
-   !>  header [in]  optional comment lines written after the standard header
-   !>               (each prefixed with '# ')
-   subroutine write_profile(path, tool, errmsg, stat, header)
-      character(len=*), intent(in) :: path
-      type(tool_type), intent(in) :: tool
-      character(len=*), intent(out) :: errmsg
-      integer, intent(out), optional :: stat
-      character(len=*), intent(in), optional :: header(:)
-      integer :: unit, ios, i
-      character(len=256) :: iomsg
-      character(len=*), parameter :: fmt_line = '(a, 4(1x, es24.16e3))', &
-                                     fmt_arc = '(a, 6(1x, es24.16e3), 1x, a)'
-      errmsg = ''
-      if (present(stat)) stat = 1
-      if (tool%nseg < 1 .or. (tool%side /= 1 .and. tool%side /= -1)) then
-         errmsg = trim(path)//': tool is empty or has no side'
-         return
-      end if
-      open (newunit=unit, file=path, status='replace', action='write', iostat=ios, iomsg=iomsg)
-      if (ios /= 0) then
-         errmsg = trim(path)//': cannot open for writing: '//trim(iomsg)
-         return
-      end if
-      write (unit, '(a)', iostat=ios) '# drawbead tool profile (format: docs/PROFILE_FORMAT.md)'
-      write (unit, '(a)', iostat=ios) '# centreline surface in mm at shift 0; pieces left to right'
-      if (present(header)) then
-         do i = 1, size(header)
-            write (unit, '(a)', iostat=ios) '# '//trim(header(i))
-         end do
-      end if
-      write (unit, '(a)', iostat=ios) 'side '//merge('upper', 'lower', tool%side == 1)
-      do i = 1, tool%nseg
-         if (ios /= 0) exit
-         associate (s => tool%seg(i))
-            if (s%kind == seg_line) then
-               write (unit, fmt_line, iostat=ios, iomsg=iomsg) 'line', s%p1, s%p2
-            else
-               write (unit, fmt_arc, iostat=ios, iomsg=iomsg) 'arc ', s%p1, s%p2, s%centre, &
-                  trim(merge('ccw', 'cw ', s%sense == 1))
-            end if
-         end associate
-      end do
-      close (unit)
-      if (ios /= 0) then
-         errmsg = trim(path)//': write error: '//trim(iomsg)
-         return
-      end if
-      if (present(stat)) stat = 0
-   end subroutine write_profile
-
-   !> GET_LINE: read one whole record of any length.
-   !>  unit [in]  connected formatted unit
-   !>  line [out] the record without its end of line
-   !>  ios  [out] 0, or the iostat of end of file / error
-   subroutine get_line(unit, line, ios)
-      use, intrinsic :: iso_fortran_env, only: iostat_eor, iostat_end
-      integer, intent(in) :: unit
-      character(len=:), allocatable, intent(out) :: line
-      integer, intent(out) :: ios
-      character(len=256) :: buf
-      integer :: nread
-      line = ''
-      do
-         read (unit, '(a)', advance='no', iostat=ios, size=nread) buf
-         line = line//buf(1:nread)
-         if (ios == iostat_eor) then
-            ios = 0
-            exit
-         else if (ios == iostat_end .and. len(line) > 0) then
-            ios = 0   ! last line without a newline
-            exit
-         else if (ios /= 0) then
-            exit
-         end if
-      end do
-   end subroutine get_line
-
-   !> SPLIT: the blank- or tab-separated fields of a line, '#' comments cut.
-   !>  line [in]  the line
-   !>  tok  [out] fields (truncated to len(tok))
-   !>  ntok [out] number of fields found (may exceed size(tok))
-   pure subroutine split(line, tok, ntok)
-      character(len=*), intent(in) :: line
-      character(len=*), intent(out) :: tok(:)
-      integer, intent(out) :: ntok
-      integer :: i, n, start
-      logical :: blank
-      tok = ''
-      ntok = 0
-      n = index(line, '#') - 1
-      if (n < 0) n = len(line)
-      start = 0
-      do i = 1, n + 1
-         if (i <= n) then
-            blank = line(i:i) == ' ' .or. line(i:i) == achar(9) .or. line(i:i) == achar(13)
-         else
-            blank = .true.
-         end if
-         if (.not. blank .and. start == 0) then
-            start = i
-         else if (blank .and. start > 0) then
-            ntok = ntok + 1
-            if (ntok <= size(tok)) tok(ntok) = line(start:i - 1)
-            start = 0
-         end if
-      end do
-   end subroutine split
-
-   !> TO_REAL: strict conversion of a field to a real (digits, sign, point,
-   !> exponent letter only; list-directed read would accept '1,2' or 'T').
-   !>  s  [in]  the field
-   !>  x  [out] its value (0 if not ok)
-   !>  ok [out] whether s is a number
-   subroutine to_real(s, x, ok)
-      character(len=*), intent(in) :: s
-      real(dp), intent(out) :: x
-      logical, intent(out) :: ok
-      integer :: ios
-      x = 0.0_dp
-      ok = len_trim(s) > 0 .and. verify(trim(s), '0123456789+-.eEdD') == 0 .and. &
-           scan(s, '0123456789') > 0
-      if (.not. ok) return
-      read (s, *, iostat=ios) x
-      ok = ios == 0
-      if (.not. ok) x = 0.0_dp
-   end subroutine to_real
-
-   !> LOWER_CASE: ASCII lower-case copy of a word.
-   pure function lower_case(s) result(r)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: r
-      integer :: i, c
-      r = s
-      do i = 1, len(s)
-         c = iachar(s(i:i))
-         if (c >= iachar('A') .and. c <= iachar('Z')) r(i:i) = achar(c + 32)
-      end do
-   end function lower_case
 
 end module tools

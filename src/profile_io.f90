@@ -1,0 +1,254 @@
+!> profile_io -- tool profile files (docs/PROFILE_FORMAT.md): read a tool
+!> (module tools) from a file, write one to a file.
+!>
+!> FORMAT.  Plain text, coordinates in mm of the tool at rest (the lower
+!> tool's rise H is applied by the program).  '#' starts a comment (whole
+!> line or trailing); blank lines are skipped; keywords are
+!> case-insensitive; fields are separated by blanks, tabs or commas (module
+!> text's split_fields).
+!>    side upper|lower                   first data line, exactly once
+!>    line x1 y1 x2 y2                   segment from (x1,y1) to (x2,y2)
+!>    arc  x1 y1 x2 y2 xc yc ccw|cw      arc from (x1,y1) to (x2,y2) about the
+!>                                       centre (xc,yc), counter-clockwise or
+!>                                       clockwise (sense is required; an arc
+!>                                       may exceed 180 degrees)
+!> Numbers are read strictly (text's parse_real: digits, sign, point and
+!> exponent only, finite).  Pieces are listed in chain order, left to right
+!> overall.  The radius is |start - centre|; |end - centre| must agree
+!> within 1e-6 relative.  Each piece must start within 1e-6 mm of the
+!> previous piece's end (it is then snapped onto it).  The chain is then
+!> validated as tool_init does.  Errors are reported as
+!> '<path>:<line>: <what>' ('<path>: <what>' for the whole file).
+module profile_io
+   use kinds, only: dp
+   use text, only: read_line, strip_comment, split_fields, parse_real, lower, itoa, num
+   use tools, only: seg_line, segment_type, tool_type, line_segment, arc_segment, tool_init, &
+                    check_chain, radius_tol
+   implicit none
+   private
+   public :: read_profile, write_profile
+
+   !> continuity of consecutive pieces in a file, mm
+   real(dp), parameter :: file_cont_tol = 1.0e-6_dp
+   !> most fields a data line may have (an arc has 8)
+   integer, parameter :: max_fields = 12
+
+contains
+
+   !> READ_PROFILE: read a tool from a profile file (format in the module
+   !> header and docs/PROFILE_FORMAT.md).  The tool is at rest.
+   !>  path   [in]  file name
+   !>  tool   [out] the tool
+   !>  errmsg [out] blank on success, else '<path>:<line>: <what is wrong>'
+   !>               (or '<path>: ...' for whole-file problems)
+   !>  stat   [out] optional: 0 on success, else 1
+   subroutine read_profile(path, tool, errmsg, stat)
+      character(len=*), intent(in) :: path
+      type(tool_type), intent(out) :: tool
+      character(len=*), intent(out) :: errmsg
+      integer, intent(out), optional :: stat
+      character(len=:), allocatable :: line
+      character(len=256) :: iomsg
+      type(segment_type), allocatable :: segs(:), tmp(:)
+      integer, allocatable :: lineof(:), itmp(:)
+      integer :: first(max_fields), last(max_fields)
+      integer :: unit, ios, lineno, ntok, nseg, side, nneed, k, ibad
+      real(dp) :: v(6), gap
+      character(len=16) :: key
+      character(len=400) :: what
+
+      errmsg = ''
+      if (present(stat)) stat = 1
+      open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+      if (ios /= 0) then
+         errmsg = trim(path)//': cannot open: '//trim(iomsg)
+         return
+      end if
+      allocate (segs(16), lineof(16))
+      nseg = 0
+      side = 0
+      lineno = 0
+      what = ''
+      do
+         call read_line(unit, line, ios, iomsg)
+         if (ios /= 0) exit
+         lineno = lineno + 1
+         line = strip_comment(line, '#')
+         call split_fields(line, first, last, ntok)
+         if (ntok == 0) cycle
+         key = lower(field(1))
+         if (ntok > max_fields) then
+            what = 'too many fields'
+         else if (side == 0 .and. key /= 'side') then
+            what = 'the first data line must be ''side upper'' or ''side lower'''
+         else if (key == 'side') then
+            if (side /= 0) then
+               what = '''side'' given twice'
+            else if (ntok /= 2) then
+               what = '''side'' needs one word: upper or lower'
+            else if (lower(field(2)) == 'upper') then
+               side = 1
+            else if (lower(field(2)) == 'lower') then
+               side = -1
+            else
+               what = 'side must be upper or lower, not '''//field(2)//''''
+            end if
+         else if (key == 'line' .or. key == 'arc') then
+            nneed = merge(4, 6, key == 'line')
+            if (key == 'line' .and. ntok /= 1 + nneed) then
+               what = '''line'' needs 4 numbers (x1 y1 x2 y2), found '//itoa(ntok - 1)
+            else if (key == 'arc' .and. ntok /= 2 + nneed) then
+               what = '''arc'' needs 6 numbers and a sense (x1 y1 x2 y2 xc yc ccw|cw), found '// &
+                      itoa(ntok - 1)
+            end if
+            if (len_trim(what) == 0) then
+               do k = 1, nneed
+                  if (.not. parse_real(field(1 + k), v(k))) then
+                     what = 'not a number: '''//field(1 + k)//''''
+                     exit
+                  end if
+               end do
+            end if
+            if (len_trim(what) == 0 .and. key == 'line') then
+               if (norm2(v(3:4) - v(1:2)) <= 0.0_dp) what = 'zero-length line'
+            else if (len_trim(what) == 0) then
+               if (lower(field(8)) /= 'ccw' .and. lower(field(8)) /= 'cw') then
+                  what = 'arc sense must be ccw or cw, not '''//field(8)//''''
+               else if (norm2(v(1:2) - v(5:6)) <= 0.0_dp .or. norm2(v(3:4) - v(5:6)) <= 0.0_dp) then
+                  what = 'zero arc radius (an end point is the centre)'
+               else if (abs(norm2(v(3:4) - v(5:6)) - norm2(v(1:2) - v(5:6))) > &
+                        radius_tol*norm2(v(1:2) - v(5:6))) then
+                  ! 8 digits (not num's 6): the radii may differ in the 7th
+                  write (what, '(a, es14.7, a, es14.7, a)') 'radius mismatch: |start - centre| = ', &
+                     norm2(v(1:2) - v(5:6)), ', |end - centre| = ', norm2(v(3:4) - v(5:6)), ' mm'
+               else if (norm2(v(3:4) - v(1:2)) <= 0.0_dp) then
+                  what = 'zero-length arc (start = end)'
+               end if
+            end if
+            if (len_trim(what) == 0 .and. nseg > 0) then
+               gap = norm2(v(1:2) - segs(nseg)%p2)
+               if (gap > file_cont_tol) then
+                  what = 'piece does not start where the piece on line '//itoa(lineof(nseg))// &
+                         ' ends (gap '//num(gap)//' mm)'
+               else
+                  v(1:2) = segs(nseg)%p2
+               end if
+            end if
+            if (len_trim(what) == 0) then
+               if (nseg == size(segs)) then
+                  allocate (tmp(2*nseg), itmp(2*nseg))
+                  tmp(1:nseg) = segs
+                  itmp(1:nseg) = lineof
+                  call move_alloc(tmp, segs)
+                  call move_alloc(itmp, lineof)
+               end if
+               nseg = nseg + 1
+               lineof(nseg) = lineno
+               if (key == 'line') then
+                  segs(nseg) = line_segment(v(1:2), v(3:4))
+               else
+                  segs(nseg) = arc_segment(v(1:2), v(3:4), v(5:6), lower(field(8)) == 'ccw')
+               end if
+            end if
+         else
+            what = 'unknown keyword '''//field(1)//''' (expected side, line or arc)'
+         end if
+         if (len_trim(what) > 0) exit
+      end do
+      close (unit)
+      if (len_trim(what) > 0) then
+         errmsg = trim(path)//':'//itoa(lineno)//': '//trim(what)
+         return
+      end if
+      if (ios > 0) then
+         errmsg = trim(path)//':'//itoa(lineno + 1)//': read error: '//trim(iomsg)
+         return
+      end if
+      if (side == 0) then
+         errmsg = trim(path)//': no ''side upper|lower'' line'
+         return
+      end if
+      if (nseg < 1) then
+         errmsg = trim(path)//': no pieces (need at least one line or arc)'
+         return
+      end if
+      call check_chain(segs(1:nseg), side, file_cont_tol, .false., what, ibad)
+      if (ibad /= 0) then
+         ! name the line of the offending piece (the last one for the chain)
+         errmsg = trim(path)//':'//itoa(lineof(min(ibad, nseg)))//': '//trim(what)
+         return
+      end if
+      call tool_init(tool, segs(1:nseg), side, what, ibad)
+      if (ibad /= 0) then
+         errmsg = trim(path)//': '//trim(what)
+         return
+      end if
+      if (present(stat)) stat = 0
+   contains
+      !> FIELD: field k (1 <= k <= ntok <= max_fields) of the current line.
+      !>  k [in]  field number
+      function field(k) result(f)
+         integer, intent(in) :: k
+         character(len=:), allocatable :: f
+         f = line(first(k):last(k))
+      end function field
+   end subroutine read_profile
+
+   !> WRITE_PROFILE: write a tool as a profile file (the tool at rest),
+   !> numbers with 17 significant digits so read_profile gives back the same
+   !> pieces.
+   !>  path   [in]  file name (replaced if it exists)
+   !>  tool   [in]  the tool
+   !>  errmsg [out] blank on success, else '<path>: <what>'
+   !>  stat   [out] optional: 0 on success, else 1
+   !>  header [in]  optional comment lines written after the standard header
+   !>               (each prefixed with '# ')
+   subroutine write_profile(path, tool, errmsg, stat, header)
+      character(len=*), intent(in) :: path
+      type(tool_type), intent(in) :: tool
+      character(len=*), intent(out) :: errmsg
+      integer, intent(out), optional :: stat
+      character(len=*), intent(in), optional :: header(:)
+      integer :: unit, ios, i
+      character(len=256) :: iomsg
+      character(len=*), parameter :: fmt_line = '(a, 4(1x, es24.16e3))', &
+                                     fmt_arc = '(a, 6(1x, es24.16e3), 1x, a)'
+      errmsg = ''
+      if (present(stat)) stat = 1
+      if (tool%nseg < 1 .or. (tool%side /= 1 .and. tool%side /= -1)) then
+         errmsg = trim(path)//': tool is empty or has no side'
+         return
+      end if
+      open (newunit=unit, file=path, status='replace', action='write', iostat=ios, iomsg=iomsg)
+      if (ios /= 0) then
+         errmsg = trim(path)//': cannot open for writing: '//trim(iomsg)
+         return
+      end if
+      write (unit, '(a)', iostat=ios) '# drawbead tool profile (format: docs/PROFILE_FORMAT.md)'
+      write (unit, '(a)', iostat=ios) '# centreline surface in mm at shift 0; pieces left to right'
+      if (present(header)) then
+         do i = 1, size(header)
+            write (unit, '(a)', iostat=ios) '# '//trim(header(i))
+         end do
+      end if
+      write (unit, '(a)', iostat=ios) 'side '//merge('upper', 'lower', tool%side == 1)
+      do i = 1, tool%nseg
+         if (ios /= 0) exit
+         associate (s => tool%seg(i))
+            if (s%kind == seg_line) then
+               write (unit, fmt_line, iostat=ios, iomsg=iomsg) 'line', s%p1, s%p2
+            else
+               write (unit, fmt_arc, iostat=ios, iomsg=iomsg) 'arc ', s%p1, s%p2, s%centre, &
+                  trim(merge('ccw', 'cw ', s%sense == 1))
+            end if
+         end associate
+      end do
+      close (unit)
+      if (ios /= 0) then
+         errmsg = trim(path)//': write error: '//trim(iomsg)
+         return
+      end if
+      if (present(stat)) stat = 0
+   end subroutine write_profile
+
+end module profile_io
