@@ -129,8 +129,9 @@ contains
       integer, intent(out) :: ios
 
       type(deck_type) :: defaults
+      character(len=echo_len) :: lines(echo_rows)
       character(len=512) :: msg
-      character(len=:), allocatable :: name, value, kind
+      character(len=:), allocatable :: name, written, vtype
       integer :: g, k, eq
 
       do g = 1, size(group_names)
@@ -141,17 +142,17 @@ contains
             eq = index(lines(k), '=')
             if (eq == 0) cycle
             name = lower(trim(adjustl(lines(k)(1:eq - 1))))
-            value = trim(adjustl(lines(k)(eq + 1:)))
-            if (value(1:1) == '"') then
-               kind = 'text'
-            else if (value(1:1) == 'T' .or. value(1:1) == 'F') then
-               kind = 'logical'
-            else if (scan(value, '.E') > 0) then
-               kind = 'real'
+            written = trim(adjustl(lines(k)(eq + 1:)))
+            if (written(1:1) == '"') then
+               vtype = 'text'
+            else if (written(1:1) == 'T' .or. written(1:1) == 'F') then
+               vtype = 'logical'
+            else if (scan(written, '.E') > 0) then
+               vtype = 'real'
             else
-               kind = 'integer'
+               vtype = 'integer'
             end if
-            write (unit, '(a)', iostat=ios) trim(group_names(g))//' '//name//' '//kind
+            write (unit, '(a)', iostat=ios) trim(group_names(g))//' '//name//' '//vtype
             if (ios /= 0) return
          end do
       end do

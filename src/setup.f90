@@ -100,7 +100,7 @@ contains
                   d%voce_sigma0, d%voce_q, d%voce_b]
       case ('table')
          npt = 0
-         if (len_trim(d%curve_file) > 0 .and. file_exists(d%curve_file)) then
+         if (readable(d%curve_file)) then
             emsg = ''
             call read_curve_file(trim(d%curve_file), ep, sigma, emsg)
             if (len_trim(emsg) > 0) then
@@ -153,14 +153,14 @@ contains
                                      upper, lower, errmsg)
          if (len_trim(errmsg) > 0) call add_error(errs, ctx//trim(errmsg))
       case ('profile')
-         if (len_trim(d%upper_profile) > 0 .and. file_exists(d%upper_profile)) then
+         if (readable(d%upper_profile)) then
             call read_profile(trim(d%upper_profile), upper, errmsg)
             if (len_trim(errmsg) == 0 .and. upper%side /= 1) errmsg = 'variable upper_profile: '// &
                trim(d%upper_profile)//' is a lower tool (side lower)'
             if (len_trim(errmsg) > 0) call add_error(errs, ctx//trim(errmsg))
          end if
          errmsg = ''
-         if (len_trim(d%lower_profile) > 0 .and. file_exists(d%lower_profile)) then
+         if (readable(d%lower_profile)) then
             call read_profile(trim(d%lower_profile), lower, errmsg)
             if (len_trim(errmsg) == 0 .and. lower%side /= -1) errmsg = 'variable lower_profile: '// &
                trim(d%lower_profile)//' is an upper tool (side upper)'
@@ -192,5 +192,16 @@ contains
       ctl%tearing_length_over_h = d%tearing_length
       ctl%fold_curvature = d%fold_curvature
    end subroutine controls_of_deck
+
+   !> READABLE: .true. for a file name given and existing (a missing one is
+   !> the deck's error, reported by validate_deck).
+   !>  path  [in] file name from the deck
+   function readable(path) result(yes)
+      character(len=*), intent(in) :: path
+      logical :: yes
+      yes = .false.
+      if (len_trim(path) == 0) return
+      yes = file_exists(path)
+   end function readable
 
 end module setup
