@@ -15,13 +15,14 @@ module analysis
    use model, only: model_type, state_type, load_type, load_init
    use contact, only: ich_penetration
    use controls, only: controls_type
-   use record, only: run_record, record_pull, run_no_convergence
+   use record, only: run_record, record_pull, run_no_convergence, run_interrupted, run_write_failed
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular, newton_solve_failed
    use step_control, only: judge_force_change, next_increment, cutback_factor
    use tearing, only: check_localization, check_fold, strain_limit_indicator
    use energy, only: energy_totals, add_increment_work
-   use output, only: output_files, write_row, write_strains, write_snapshot
+   use output, only: output_files, write_row, write_strains, write_snapshot, write_progress
+   use os, only: stop_requested, signal_name
    use tools, only: tool_level
    implicit none
    private
@@ -207,7 +208,7 @@ contains
          call check_fold(m, s, phase, p, ctl%fold_curvature, rec)
          min_ind = minval(s%indicator)
          call check_localization(m, s, phase, p, dt, ind_old, nl_old, ell, rec, paper_met)
-         if (paper_met) call write_strains(out%dir//'/strain_localization.dat', m, s, &
+         if (paper_met) call write_strains(out, 'strain_localization.dat', m, s, &
                                            'at the increment where the paper''s criterion was met')
          tool_work = 0.0_dp
          if (phase == 'lock') tool_work = 0.5_dp*dt*(rec%last_conjugate + punch)
@@ -215,13 +216,13 @@ contains
          rec%last_conjugate = force
          if (phase == 'lock') then
             rec%lock_force = punch
-            call write_row(out%lock, [p/h, punch/eh, punch, real(nr%iterations, dp), dt/h, &
+            call write_row(out, out%lock, [p/h, punch/eh, punch, real(nr%iterations, dp), dt/h, &
                                       min_ind, pen, reaction/eh, reaction])
          else
             rec%peak_force = max(rec%peak_force, reaction)
             rec%last_lift = lift
             call record_pull(rec, p, reaction)
-            call write_row(out%pull, [p/h, reaction/eh, reaction, real(nr%iterations, dp), &
+            call write_row(out, out%pull, [p/h, reaction/eh, reaction, real(nr%iterations, dp), &
                                       dt/h, min_ind, lift/eh, lift, pen, punch/eh])
          end if
          ! LOCALIZED once the paper's criterion has been met, NONLOCAL once the
@@ -244,6 +245,22 @@ contains
             ! of a multiple counts as past it, and the next one is then due)
             next_snapshot = p0 + (aint((p - p0 + 1.0e-9_dp*h)/(ctl%snapshot_every_over_h*h)) + &
                                   1.0_dp)*ctl%snapshot_every_over_h*h
+         end if
+         flush (output_unit)
+         call write_progress(out, phase, p/h, rec%increments)
+         ! a result that cannot be written stops the run (nothing computed
+         ! after it could be kept); a stop asked for by SIGTERM or SIGINT
+         ! ends it here, at a converged increment with everything on disk
+         if (out%failed) then
+            rec%status = run_write_failed
+            rec%message = 'cannot write '//out%failure
+            return
+         end if
+         if (stop_requested()) then
+            rec%status = run_interrupted
+            rec%message = 'interrupted by '//signal_name()//' in '//phase// &
+                          ' at a converged increment'
+            return
          end if
          ! stop once both tearing criteria have been met
          if (rec%localized .and. rec%nl_localized .and. ctl%stop_at_localization) return

@@ -1,29 +1,29 @@
 !> drawbead -- plane-strain analysis of a sheet locked into a drawbead and
 !> pulled through it (Triantafyllidis, Maker & Samanta, 1986).
 !>
-!> Usage: drawbead deck.nml [--output DIR]
-!>        drawbead --list-variables
-!>   --output DIR (or -o DIR) overrides &control output_dir;
-!>   --list-variables prints every deck variable as `group variable type`.
-!> Exit status (module errors): 0 done, 1 bad input, 2 no convergence
-!> (results so far kept).
-!>
 !> deck -> set-up (model and controls) -> locking -> pulling -> summary;
-!> nothing after set-up sees the deck.
+!> nothing after set-up sees the deck.  Usage and exit status: see `usage`
+!> below and docs/user-guide.md.
 program drawbead
    use kinds, only: dp, output_unit, error_unit
-   use errors, only: error_list, report_errors, print_error, exit_input, exit_noconvergence
+   use errors, only: error_list, report_errors, print_error, exit_ok, exit_input, &
+                     exit_noconvergence, exit_write, exit_interrupted
    use deck, only: deck_type
    use deck_reader, only: read_deck, echo_deck, list_variables
    use setup, only: setup_run
    use controls, only: controls_type
    use model, only: model_type, state_type, state_init
-   use record, only: run_record, run_record_init, run_ok
+   use record, only: run_record, run_record_init, run_ok, run_no_convergence, run_interrupted, &
+                     run_write_failed
    use analysis, only: run_phase
    use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools, &
                      open_snapshots
    use summary, only: write_summary
+   use os, only: install_stop_handlers
    implicit none
+   character(len=*), parameter :: version = '1.1.0'
+   character(len=*), parameter :: usage = 'usage: drawbead DECK.nml [-o|--output DIR]'// &
+                                  ' | --list-variables | --help | --version'
    type(deck_type) :: d
    type(error_list) :: errs
    type(model_type) :: m
@@ -31,53 +31,29 @@ program drawbead
    type(state_type) :: s
    type(output_files) :: out
    type(run_record) :: rec
-   character(len=512) :: path, arg, out_override
-   integer :: iarg, ios
+   character(len=:), allocatable :: path, out_override
    character(len=300) :: errmsg
+   character(len=256) :: iomsg
+   integer :: ios
    real(dp) :: t_start, t_end
 
-   path = ''
-   out_override = ''
-   iarg = 1
-   do while (iarg <= command_argument_count())
-      call get_command_argument(iarg, arg)
-      if (arg == '--output' .or. arg == '-o') then
-         iarg = iarg + 1
-         call get_command_argument(iarg, out_override)
-      else if (arg == '--list-variables') then
-         call list_variables(output_unit, ios)
-         if (ios /= 0) stop exit_input
-         stop
-      else if (arg(1:1) == '-') then
-         call print_error('unknown option '//trim(arg), 'drawbead')
-         path = ''
-         exit
-      else
-         path = arg
-      end if
-      iarg = iarg + 1
-   end do
-   if (len_trim(path) == 0) then
-      write (error_unit, '(a)') 'usage: drawbead deck.nml [--output DIR] | drawbead --list-variables'
-      flush (error_unit)
-      stop exit_input
-   end if
+   call parse_command_line(path, out_override)
 
    ! set-up: every error of the deck and of the files it names, together
-   call read_deck(trim(path), d, errs)
+   call read_deck(path, d, errs)
    call setup_run(d, m, ctl, errs)
    if (errs%count > 0) then
       call report_errors(errs, error_unit)
-      flush (error_unit)
-      stop exit_input
+      call finish('bad input', exit_input)
    end if
-   if (len_trim(out_override) > 0) then
+   if (len(out_override) > 0) then
       d%output_dir = out_override
       ctl%output_dir = out_override
    end if
    call cpu_time(t_start)
    write (output_unit, '(a)') '# drawbead: '//trim(ctl%title)
    call echo_deck(d, output_unit)
+   flush (output_unit)
 
    call state_init(m, s)
    call run_record_init(rec)
@@ -87,24 +63,141 @@ program drawbead
    if (len_trim(errmsg) > 0) then
       call print_error('deck '''//trim(d%deck_file)//''', group &control, '// &
                        'variable output_dir: '//trim(errmsg))
-      stop exit_input
+      call finish('bad input', exit_input)
    end if
+   call install_stop_handlers()
 
    if (m%has_tools .and. m%lock_depth > 0.0_dp) then
       call run_phase(m, ctl, s, 'lock', 0.0_dp, m%lock_depth, out, rec)
    end if
-   call write_strains(trim(ctl%output_dir)//'/strain_lock.dat', m, s, 'after locking')
-   call write_tools(trim(ctl%output_dir)//'/tools_lock.dat', m, s%shift, 'at the end of locking')
+   call write_strains(out, 'strain_lock.dat', m, s, 'after locking')
+   call write_tools(out, 'tools_lock.dat', m, s%shift, 'at the end of locking')
    if (rec%status == run_ok .and. .not. (rec%localized .and. ctl%stop_at_localization)) then
       call run_phase(m, ctl, s, 'pull', 0.0_dp, m%pull_distance, out, rec)
    end if
-   call write_strains(trim(ctl%output_dir)//'/strain_pull.dat', m, s, 'after pulling')
-   call write_tools(trim(ctl%output_dir)//'/tools_pull.dat', m, s%shift, 'at the end of pulling')
+   call write_strains(out, 'strain_pull.dat', m, s, 'after pulling')
+   call write_tools(out, 'tools_pull.dat', m, s%shift, 'at the end of pulling')
    call close_outputs(out)
-   call cpu_time(t_end)
-   call write_summary(trim(ctl%output_dir)//'/summary.txt', m, s, ctl, rec, t_end - t_start)
-   if (rec%status /= run_ok) then
-      call print_error(trim(rec%message), 'run_phase')
-      stop exit_noconvergence
+   if (out%failed .and. rec%status /= run_write_failed) then
+      rec%status = run_write_failed
+      rec%message = 'cannot write '//out%failure
    end if
+   call cpu_time(t_end)
+   call write_summary(out%dir//'/summary.txt', m, s, ctl, rec, t_end - t_start, ios, iomsg)
+   if (ios /= 0 .and. rec%status /= run_write_failed) then
+      rec%status = run_write_failed
+      rec%message = 'cannot write '//out%dir//'/summary.txt: '//trim(iomsg)
+   end if
+   select case (rec%status)
+   case (run_ok)
+      call finish('done', exit_ok)
+   case (run_no_convergence)
+      call print_error(trim(rec%message), 'run_phase')
+      call finish('no convergence (results so far kept)', exit_noconvergence)
+   case (run_interrupted)
+      call print_error(trim(rec%message), 'run_phase')
+      call finish('interrupted (results so far kept)', exit_interrupted)
+   case default
+      call print_error(trim(rec%message), 'output')
+      call finish('a result file could not be written', exit_write)
+   end select
+
+contains
+
+   !> PARSE_COMMAND_LINE: exactly one deck and at most one -o DIR; --help,
+   !> --version and --list-variables answer and stop.  Anything else is an
+   !> error with the usage line (exit_input).
+   !>  deck_path  [out] the deck
+   !>  out_dir    [out] the -o value, '' if not given
+   subroutine parse_command_line(deck_path, out_dir)
+      character(len=:), allocatable, intent(out) :: deck_path, out_dir
+      character(len=:), allocatable :: arg
+      integer :: i, n, ios
+      deck_path = ''
+      out_dir = ''
+      n = command_argument_count()
+      i = 1
+      do while (i <= n)
+         arg = argument(i)
+         select case (arg)
+         case ('-h', '--help')
+            write (output_unit, '(a)') usage, &
+               '  DECK.nml            the input deck (docs/input-reference.md)', &
+               '  -o, --output DIR    write the results in DIR instead of &control output_dir', &
+               '  --list-variables    print every deck variable as "group variable type"', &
+               '  --help, --version   this text, the version', &
+               'exit status: 0 done, 1 bad input, 2 no convergence, 3 a result file could'// &
+               ' not be written, 4 interrupted (SIGTERM, SIGINT)'
+            stop
+         case ('--version')
+            write (output_unit, '(a)') 'drawbead '//version
+            stop
+         case ('--list-variables')
+            call list_variables(output_unit, ios)
+            if (ios /= 0) stop exit_write
+            stop
+         case ('-o', '--output')
+            if (i == n) call usage_error('option '//arg//' needs a directory')
+            if (len(out_dir) > 0) call usage_error('option '//arg//' given twice')
+            i = i + 1
+            out_dir = argument(i)
+            if (len(out_dir) == 0) call usage_error('option '//arg//' needs a directory')
+         case default
+            if (len(arg) == 0) then
+               call usage_error('an empty argument')
+            else if (arg(1:1) == '-') then
+               call usage_error('unknown option '//arg)
+            else if (len(deck_path) > 0) then
+               call usage_error('more than one deck ('''//deck_path//''' and '''//arg// &
+                                '''): run one deck per call')
+            end if
+            deck_path = arg
+         end select
+         i = i + 1
+      end do
+      if (len(deck_path) == 0) call usage_error('no deck given')
+   end subroutine parse_command_line
+
+   !> ARGUMENT: command-line argument i, of any length.
+   function argument(i) result(arg)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: arg
+      integer :: n
+      call get_command_argument(i, length=n)
+      allocate (character(len=n) :: arg)
+      if (n > 0) call get_command_argument(i, arg)
+   end function argument
+
+   !> USAGE_ERROR: a command-line error and the usage line; exit_input.
+   subroutine usage_error(what)
+      character(len=*), intent(in) :: what
+      call print_error(what, 'drawbead')
+      write (error_unit, '(a)') usage
+      flush (error_unit)
+      stop exit_input
+   end subroutine usage_error
+
+   !> FINISH: the log's last line (status and exit code), then stop with
+   !> that code.
+   !>  status  [in] what became of the run
+   !>  code    [in] the exit status (module errors)
+   subroutine finish(status, code)
+      character(len=*), intent(in) :: status
+      integer, intent(in) :: code
+      write (output_unit, '(a,i0)') '# drawbead: '//status//', exit code ', code
+      flush (output_unit)
+      flush (error_unit)
+      select case (code)
+      case (exit_ok)
+         stop
+      case (exit_input)
+         stop exit_input
+      case (exit_noconvergence)
+         stop exit_noconvergence
+      case (exit_write)
+         stop exit_write
+      case default
+         stop exit_interrupted
+      end select
+   end subroutine finish
 end program drawbead

@@ -13,7 +13,7 @@ module errors
    use kinds, only: error_unit
    implicit none
    private
-   public :: exit_ok, exit_input, exit_noconvergence
+   public :: exit_ok, exit_input, exit_noconvergence, exit_write, exit_interrupted
    public :: error_message, error_list
    public :: add_error, report_errors, warn, print_error
 
@@ -21,8 +21,16 @@ module errors
    integer, parameter :: exit_ok = 0
    !> Exit status of the program: the input deck (or a file it names) is bad.
    integer, parameter :: exit_input = 1
-   !> Exit status of the program: the increment loop could not converge.
+   !> Exit status of the program: the increment loop could not converge
+   !> (the results so far are kept).
    integer, parameter :: exit_noconvergence = 2
+   !> Exit status of the program: a result file could not be written (full
+   !> disk, quota, removed directory); the message names the file and the
+   !> system's reason.
+   integer, parameter :: exit_write = 3
+   !> Exit status of the program: SIGTERM or SIGINT stopped the run at a
+   !> converged increment (everything so far on disk, status = interrupted).
+   integer, parameter :: exit_interrupted = 4
 
    !> One message of any length.
    type :: error_message

@@ -7,11 +7,13 @@ module record
    implicit none
    private
    public :: run_record, run_record_init, record_pull
-   public :: run_ok, run_no_convergence
+   public :: run_ok, run_no_convergence, run_interrupted, run_write_failed
 
-   !> run_record%status: the run went on to its end (or stopped at tearing),
-   !> or an increment could not converge.
-   integer, parameter :: run_ok = 0, run_no_convergence = 2
+   !> run_record%status: the run went on to its end (or stopped at tearing);
+   !> an increment could not converge; SIGTERM or SIGINT stopped it; a
+   !> result file could not be written.
+   integer, parameter :: run_ok = 0, run_no_convergence = 2, run_interrupted = 3, &
+                         run_write_failed = 4
 
    !> What the run has found so far (written to summary.txt).
    type :: run_record

@@ -4,9 +4,8 @@ module summary
    use controls, only: controls_type
    use section, only: ih_zbar
    use model, only: model_type, state_type
-   use record, only: run_record, run_ok
+   use record, only: run_record, run_ok, run_no_convergence, run_interrupted, run_write_failed
    use energy, only: energy_totals
-   use output, only: write_summary_line
    implicit none
    private
    public :: write_summary, steady_force, summary_value
@@ -85,23 +84,32 @@ contains
 
    !> WRITE_SUMMARY: write summary.txt.
    !>  path [in] file; m, s, ctl, rec [in] the run; cpu [in] CPU seconds
-   subroutine write_summary(path, m, s, ctl, rec, cpu)
+   !>  ios  [out] 0, or the iostat of the first failed open, write or close
+   !>  iomsg [out] the system's reason when ios /= 0
+   subroutine write_summary(path, m, s, ctl, rec, cpu, ios, iomsg)
       character(len=*), intent(in) :: path
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
       type(controls_type), intent(in) :: ctl
       type(run_record), intent(in) :: rec
       real(dp), intent(in) :: cpu
-      integer :: u, stat
+      integer, intent(out) :: ios
+      character(len=*), intent(out) :: iomsg
+      integer :: u
       real(dp) :: h, eh, fsteady, steady_at, thinning, energy(4), pull_work
       logical :: steady
       character(len=32) :: status
-      open (newunit=u, file=path, status='replace', action='write', iostat=stat)
-      if (stat /= 0) return
+      iomsg = ''
+      open (newunit=u, file=path, status='replace', action='write', iostat=ios, iomsg=iomsg)
+      if (ios /= 0) return
       h = m%thickness
       eh = m%youngs*h
-      if (rec%status /= run_ok) then
+      if (rec%status == run_no_convergence) then
          status = 'no_convergence'
+      else if (rec%status == run_interrupted) then
+         status = 'interrupted'
+      else if (rec%status == run_write_failed) then
+         status = 'write_failed'
       else if (rec%localized) then
          status = 'localized'
       else
@@ -109,56 +117,89 @@ contains
       end if
       call steady_force(rec, h, fsteady, steady_at, steady)
       thinning = 1.0_dp - minval(s%hn(m%npt, ih_zbar, :, :) - s%hn(1, ih_zbar, :, :))/h
-      write (u, '(a)') '# drawbead summary: '//trim(ctl%title), 'status = '//trim(status)
-      write (u, '(a)') 'localization_phase = '//trim(merge(rec%loc_phase, 'none    ', rec%localized))
-      call write_summary_line(u, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'pull')
-      call write_summary_line(u, 'lock_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'lock')
-      call write_summary_line(u, 's_star_over_h', rec%s_star/h, rec%localized)
+      if (ios == 0) write (u, '(a)', iostat=ios, iomsg=iomsg) '# drawbead summary: '//trim(ctl%title), &
+         'status = '//trim(status)
+      if (ios == 0) write (u, '(a)', iostat=ios, iomsg=iomsg) 'localization_phase = '// &
+         trim(merge(rec%loc_phase, 'none    ', rec%localized))
+      call put(u, ios, iomsg, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'pull')
+      call put(u, ios, iomsg, 'lock_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'lock')
+      call put(u, ios, iomsg, 's_star_over_h', rec%s_star/h, rec%localized)
       ! the mesh-objective tearing measure: mid-surface strain averaged over
       ! tearing_length reaching the plane-strain maximum-load strain
-      write (u, '(a)') 'nonlocal_localization_phase = '// &
+      if (ios == 0) write (u, '(a)', iostat=ios, iomsg=iomsg) 'nonlocal_localization_phase = '// &
          trim(merge(rec%nl_phase, 'none    ', rec%nl_localized))
-      call write_summary_line(u, 'delta_cr_nonlocal_over_h', rec%nl_load_cr/h, &
+      call put(u, ios, iomsg, 'delta_cr_nonlocal_over_h', rec%nl_load_cr/h, &
                               rec%nl_localized .and. rec%nl_phase == 'pull')
-      call write_summary_line(u, 'lock_cr_nonlocal_over_h', rec%nl_load_cr/h, &
+      call put(u, ios, iomsg, 'lock_cr_nonlocal_over_h', rec%nl_load_cr/h, &
                               rec%nl_localized .and. rec%nl_phase == 'lock')
-      call write_summary_line(u, 's_star_nonlocal_over_h', rec%nl_s_star/h, rec%nl_localized)
-      call write_summary_line(u, 'tearing_length_over_h', ctl%tearing_length_over_h, .true.)
-      call write_summary_line(u, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
+      call put(u, ios, iomsg, 's_star_nonlocal_over_h', rec%nl_s_star/h, rec%nl_localized)
+      call put(u, ios, iomsg, 'tearing_length_over_h', ctl%tearing_length_over_h, .true.)
+      call put(u, ios, iomsg, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
       ! the first state bent tighter than fold_curvature: past it the forces
       ! depend on the mesh (a hinge one or two elements wide)
-      write (u, '(a)') 'fold_phase = '//trim(merge(rec%fold_phase, 'none    ', rec%folded))
-      call write_summary_line(u, 'fold_load_over_h', rec%fold_load/h, rec%folded)
-      call write_summary_line(u, 's_fold_over_h', rec%fold_s/h, rec%folded)
-      call write_summary_line(u, 'fold_curvature', ctl%fold_curvature, .true.)
-      call write_summary_line(u, 'lock_force_over_Eh', rec%lock_force/eh, m%has_tools)
-      call write_summary_line(u, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
-      call write_summary_line(u, 'final_force_over_Eh', rec%pull_force(max(rec%n_pull, 1))/eh, rec%n_pull > 0)
-      call write_summary_line(u, 'steady_force_over_Eh', fsteady/eh, steady)
-      call write_summary_line(u, 'steady_reached_at_delta_over_h', steady_at/h, steady)
-      call write_summary_line(u, 'final_lift_over_Eh', rec%last_lift/eh, rec%n_pull > 0 .and. m%has_tools)
-      call write_summary_line(u, 'max_thinning', thinning, .true.)
-      call write_summary_line(u, 'max_penetration_over_h', rec%max_penetration, m%has_tools)
-      call write_summary_line(u, 'final_delta_over_h', merge(rec%pull_delta(max(rec%n_pull, 1)), &
+      if (ios == 0) write (u, '(a)', iostat=ios, iomsg=iomsg) 'fold_phase = '// &
+         trim(merge(rec%fold_phase, 'none    ', rec%folded))
+      call put(u, ios, iomsg, 'fold_load_over_h', rec%fold_load/h, rec%folded)
+      call put(u, ios, iomsg, 's_fold_over_h', rec%fold_s/h, rec%folded)
+      call put(u, ios, iomsg, 'fold_curvature', ctl%fold_curvature, .true.)
+      call put(u, ios, iomsg, 'lock_force_over_Eh', rec%lock_force/eh, m%has_tools)
+      call put(u, ios, iomsg, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
+      call put(u, ios, iomsg, 'final_force_over_Eh', rec%pull_force(max(rec%n_pull, 1))/eh, rec%n_pull > 0)
+      call put(u, ios, iomsg, 'steady_force_over_Eh', fsteady/eh, steady)
+      call put(u, ios, iomsg, 'steady_reached_at_delta_over_h', steady_at/h, steady)
+      call put(u, ios, iomsg, 'final_lift_over_Eh', rec%last_lift/eh, rec%n_pull > 0 .and. m%has_tools)
+      call put(u, ios, iomsg, 'max_thinning', thinning, .true.)
+      call put(u, ios, iomsg, 'max_penetration_over_h', rec%max_penetration, m%has_tools)
+      call put(u, ios, iomsg, 'final_delta_over_h', merge(rec%pull_delta(max(rec%n_pull, 1)), &
                               0.0_dp, rec%n_pull > 0)/h, .true.)
       ! energy balance: external work = elastic + plastic + penalty + friction
       call energy_totals(m, s, energy)
-      call write_summary_line(u, 'energy_external_work', rec%work, .true.)
-      call write_summary_line(u, 'energy_elastic', energy(1), .true.)
-      call write_summary_line(u, 'energy_plastic', energy(2), .true.)
-      call write_summary_line(u, 'energy_penalty', energy(3), .true.)
-      call write_summary_line(u, 'energy_friction', energy(4), .true.)
-      call write_summary_line(u, 'energy_balance_error', (rec%work - sum(energy))/max(abs(rec%work), tiny(1.0_dp)), &
+      call put(u, ios, iomsg, 'energy_external_work', rec%work, .true.)
+      call put(u, ios, iomsg, 'energy_elastic', energy(1), .true.)
+      call put(u, ios, iomsg, 'energy_plastic', energy(2), .true.)
+      call put(u, ios, iomsg, 'energy_penalty', energy(3), .true.)
+      call put(u, ios, iomsg, 'energy_friction', energy(4), .true.)
+      call put(u, ios, iomsg, 'energy_balance_error', (rec%work - sum(energy))/max(abs(rec%work), tiny(1.0_dp)), &
                               rec%work > 0.0_dp)
       pull_work = rec%work - rec%work_pull_start
-      call write_summary_line(u, 'pull_work', pull_work, rec%n_pull > 0)
-      call write_summary_line(u, 'pull_energy_balance_error', &
+      call put(u, ios, iomsg, 'pull_work', pull_work, rec%n_pull > 0)
+      call put(u, ios, iomsg, 'pull_energy_balance_error', &
                               (pull_work - sum(energy - rec%energy_pull_start))/max(abs(pull_work), tiny(1.0_dp)), &
                               rec%n_pull > 0 .and. pull_work > 0.0_dp)
-      write (u, '(a,i0)') 'increments = ', rec%increments
-      write (u, '(a,i0)') 'newton_iterations = ', rec%newton_iterations
-      write (u, '(a,i0)') 'cutbacks = ', rec%cutbacks
-      call write_summary_line(u, 'cpu_seconds', cpu, .true.)
-      close (u)
+      if (ios == 0) write (u, '(a,i0)', iostat=ios, iomsg=iomsg) 'increments = ', rec%increments
+      if (ios == 0) write (u, '(a,i0)', iostat=ios, iomsg=iomsg) 'newton_iterations = ', &
+         rec%newton_iterations
+      if (ios == 0) write (u, '(a,i0)', iostat=ios, iomsg=iomsg) 'cutbacks = ', rec%cutbacks
+      call put(u, ios, iomsg, 'cpu_seconds', cpu, .true.)
+      if (ios == 0) then
+         close (u, iostat=ios, iomsg=iomsg)
+      else
+         close (u)
+      end if
    end subroutine write_summary
+
+   !> PUT: one 'key = value' line with a real value, or 'none' if absent;
+   !> nothing once a write has failed.
+   !>  unit   [in]     the summary file
+   !>  ios    [in,out] 0 until a write fails, then its iostat
+   !>  iomsg  [in,out] the system's reason of the failure
+   !>  key    [in]     the key
+   !>  value  [in]     the value
+   !>  present_flag [in] .false.: write 'none'
+   subroutine put(unit, ios, iomsg, key, value, present_flag)
+      integer, intent(in) :: unit
+      integer, intent(inout) :: ios
+      character(len=*), intent(inout) :: iomsg
+      character(len=*), intent(in) :: key
+      real(dp), intent(in) :: value
+      logical, intent(in) :: present_flag
+      character(len=32) :: buf
+      if (ios /= 0) return
+      if (present_flag) then
+         write (buf, '(es24.16e3)') value
+         write (unit, '(a)', iostat=ios, iomsg=iomsg) key//' = '//trim(adjustl(buf))
+      else
+         write (unit, '(a)', iostat=ios, iomsg=iomsg) key//' = none'
+      end if
+   end subroutine put
 end module summary
