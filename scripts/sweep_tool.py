@@ -3,8 +3,9 @@
 
 Subcommands:
 
-  decks OUTDIR BASE.nml VAR=V1,V2,... [VAR=...]
-      Write one deck per combination of the values (cartesian product, the
+  decks OUTDIR VARIABLES BASE.nml VAR=V1,V2,... [VAR=...]
+      VARIABLES is the output of `drawbead --list-variables` (one line per
+      deck variable: group, name, type). Write one deck per combination of the values (cartesian product, the
       first variable varying slowest) into OUTDIR/decks/case_NNNN.nml, by
       overriding the named namelist variables of the base deck; write the
       list of deck paths (absolute, one per line, line k+1 for case k) to
@@ -29,8 +30,8 @@ Subcommands:
 
 Overriding a variable: the group holding it in the base deck is used (its
 value replaced in place, comments kept); a variable the base deck does not
-set is added to its group (taken from the deck reference of README.md, the
-table GROUP_OF below), and a missing group is appended. Text values are
+set is added to its group (from the program's list of variables), and a
+missing group is appended. Text values are
 quoted if they are not already; logicals may be given as true/false.
 """
 
@@ -39,33 +40,10 @@ import os
 import re
 import sys
 
-# Variable -> namelist group (README.md, "Input deck reference")
-GROUP_OF = {
-    # &control
-    'title': 'control', 'output_dir': 'control', 'stop_at_localization': 'control',
-    'tearing_length': 'control', 'log_residuals': 'control', 'predictor': 'control',
-    # &sheet
-    'thickness': 'sheet', 'length': 'sheet', 'n_elements': 'sheet', 'mesh_beta': 'sheet',
-    'left_edge': 'sheet', 'back_tension': 'sheet',
-    # &material
-    'youngs_modulus': 'material', 'poissons_ratio': 'material', 'r_value': 'material',
-    'hardening': 'material', 'swift_k': 'material', 'swift_eps0': 'material',
-    'swift_n': 'material', 'voce_sigma0': 'material', 'voce_q': 'material',
-    'voce_b': 'material', 'curve_file': 'material', 'thickness_points': 'material',
-    # &tools
-    'bead': 'tools', 'r1': 'tools', 'r2': 'tools', 'b1': 'tools', 'b2': 'tools',
-    'h1': 'tools', 'h2': 'tools', 'upper_profile': 'tools', 'lower_profile': 'tools',
-    'penalty': 'tools', 'friction': 'tools', 'friction_eps': 'tools',
-    'contact_smoothing': 'tools',
-    # &loading
-    'lock_depth': 'loading', 'pull_distance': 'loading', 'initial_increment': 'loading',
-    'min_increment': 'loading', 'max_increment': 'loading', 'max_iterations': 'loading',
-    'tolerance': 'loading',
-}
-GROUP_ORDER = ['control', 'sheet', 'material', 'tools', 'loading']
-TEXT_VARS = {'title', 'output_dir', 'left_edge', 'hardening', 'curve_file', 'bead',
-             'upper_profile', 'lower_profile'}
-LOGICAL_VARS = {'stop_at_localization', 'log_residuals', 'predictor'}
+# Variable -> (namelist group, type), from the program's own list
+# (bin/drawbead --list-variables, read by read_variables)
+VARIABLES = {}
+TYPES = ('real', 'integer', 'logical', 'text')
 
 # the columns of table.txt after the swept variables
 RESULT_KEYS = ['steady_force_over_Eh', 'peak_force_over_Eh', 'final_lift_over_Eh',
@@ -75,6 +53,28 @@ RESULT_KEYS = ['steady_force_over_Eh', 'peak_force_over_Eh', 'final_lift_over_Eh
 def die(msg, status=2):
     sys.stderr.write('sweep: %s\n' % msg)
     sys.exit(status)
+
+
+def read_variables(path):
+    """Fill VARIABLES from the program's list of deck variables: lines
+    'group variable type', type one of TYPES."""
+    try:
+        with open(path) as f:
+            lines = [ln.split() for ln in f if ln.strip()]
+    except OSError as e:
+        die('cannot read the list of deck variables %s: %s' % (path, e.strerror))
+    for fields in lines:
+        if len(fields) != 3 or fields[2] not in TYPES:
+            die("the program's list of deck variables (%s) has a line '%s', not "
+                "'group variable type'" % (path, ' '.join(fields)))
+        VARIABLES[fields[1]] = (fields[0], fields[2])
+    if not VARIABLES:
+        die("the program's list of deck variables (%s) is empty" % path)
+
+
+def unknown_variable(var):
+    die("unknown variable '%s': not in the base deck, and not one of %s"
+        % (var, ', '.join(sorted(VARIABLES))))
 
 
 # ---------------------------------------------------------------------------
@@ -175,11 +175,12 @@ def find_assignment(text, group, var):
 
 def format_value(var, value):
     v = value.strip()
-    if var in TEXT_VARS:
+    kind = VARIABLES.get(var, ('', ''))[1]
+    if kind == 'text':
         if len(v) >= 2 and v[0] == v[-1] and v[0] in '\'"':
             return v
         return "'" + v.replace("'", "''") + "'"
-    if var in LOGICAL_VARS:
+    if kind == 'logical':
         low = v.lower()
         if low in ('true', 't', 'yes', '1', '.true.'):
             return '.true.'
@@ -195,10 +196,9 @@ def override(text, var, value):
         span = find_assignment(text, g, var)
         if span:
             return text[:span[0]] + value + text[span[1]:]
-    group = GROUP_OF.get(var)
-    if group is None:
-        die("unknown variable '%s': not in the base deck, and not one of %s"
-            % (var, ', '.join(sorted(GROUP_OF))))
+    if var not in VARIABLES:
+        unknown_variable(var)
+    group = VARIABLES[var][0]
     for g in groups:
         if g.name == group:
             # insert on its own line before the closing '/'
@@ -221,9 +221,10 @@ def deck_value(text, var):
 
 
 def cmd_decks(args):
-    if len(args) < 3:
-        die('usage: sweep_tool.py decks OUTDIR BASE.nml VAR=V1,V2,... ...')
-    outdir, base = args[0], args[1]
+    if len(args) < 4:
+        die('usage: sweep_tool.py decks OUTDIR VARIABLES BASE.nml VAR=V1,V2,... ...')
+    outdir, base = args[0], args[2]
+    read_variables(args[1])
     try:
         with open(base) as f:
             base_text = f.read()
@@ -231,7 +232,7 @@ def cmd_decks(args):
         die('cannot read the base deck %s: %s' % (base, e.strerror))
     find_groups(base_text)          # a malformed base deck stops here
     names, lists = [], []
-    for spec in args[2:]:
+    for spec in args[3:]:
         if '=' not in spec:
             die("'%s' is not VAR=V1,V2,..." % spec)
         var, values = spec.split('=', 1)
@@ -245,9 +246,8 @@ def cmd_decks(args):
         vals = [v.strip() for v in values.split(',')]
         if not values.strip() or any(v == '' for v in vals):
             die("empty value in '%s'" % spec)
-        if deck_value(base_text, var) is None and var not in GROUP_OF:
-            die("unknown variable '%s': not in the base deck, and not one of %s"
-                % (var, ', '.join(sorted(GROUP_OF))))
+        if deck_value(base_text, var) is None and var not in VARIABLES:
+            unknown_variable(var)
         names.append(var)
         lists.append(vals)
 
