@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # lib.sh -- the shared part of the batch scripts (scripts/*.sh and
 # tests/regression/run.sh): messages and help, option checks, the build,
 # running one deck, a pool of runs, reading summary.txt and naming exit
@@ -84,7 +85,7 @@ check_count() {
 # build_program [MAKE ARGUMENTS...]: make -s in the repository (output to
 # stderr); dies if the build fails
 build_program() {
-    note "make -s $*"
+    note "make -s${*:+ $*}"
     make -s -C "$root" "$@" >&2 || die "the build failed"
 }
 
@@ -95,7 +96,7 @@ find_program() {
     bin=$1
     if [[ -z $bin ]]; then
         bin=$root/bin/drawbead
-        if (($2)); then build_program; fi
+        if (($2)); then build_program all; fi
     fi
     [[ -x $bin ]] || die "no executable program '$bin' (build it with make)"
     [[ $bin == /* ]] || bin=$PWD/$bin
@@ -123,27 +124,31 @@ run_deck() {
 # every i, at most JOBS at a time (globals bin, pool_decks, pool_dirs), and
 # call "ON_DONE i STATUS" in this shell as each run ends. Returns the
 # number of runs that exited non-zero (at most 255).
+pool_decks=()
+pool_dirs=()
 run_pool() {
-    local jobs=$1 on_done=$2 total=${#pool_decks[@]} next=0 failed=0 pid rc running
-    local -A index=()
-    while ((next < total || ${#index[@]} > 0)); do
-        while ((${#index[@]} < jobs && next < total)); do
-            run_deck "$bin" "${pool_decks[next]}" "${pool_dirs[next]}" &
-            index[$!]=$next
-            next=$((next + 1))
+    # the locals are prefixed: ON_DONE sees them (bash scopes dynamically)
+    local pool_jobs=$1 pool_done=$2 pool_total=${#pool_decks[@]} pool_next=0 pool_failed=0
+    local pool_pid pool_rc pool_running
+    local -A pool_index=()
+    while ((pool_next < pool_total || ${#pool_index[@]} > 0)); do
+        while ((${#pool_index[@]} < pool_jobs && pool_next < pool_total)); do
+            run_deck "$bin" "${pool_decks[pool_next]}" "${pool_dirs[pool_next]}" &
+            pool_index[$!]=$pool_next
+            pool_next=$((pool_next + 1))
         done
-        running=" $(jobs -rp | tr '\n' ' ') "
-        for pid in "${!index[@]}"; do
-            [[ $running == *" $pid "* ]] && continue
-            wait "$pid"
-            rc=$?
-            ((rc == 0)) || failed=$((failed + 1))
-            "$on_done" "${index[$pid]}" "$rc"
-            unset "index[$pid]"
+        pool_running=" $(jobs -rp | tr '\n' ' ') "
+        for pool_pid in "${!pool_index[@]}"; do
+            [[ $pool_running == *" $pool_pid "* ]] && continue
+            wait "$pool_pid"
+            pool_rc=$?
+            ((pool_rc == 0)) || pool_failed=$((pool_failed + 1))
+            "$pool_done" "${pool_index[$pool_pid]}" "$pool_rc"
+            unset "pool_index[$pool_pid]"
         done
-        ((${#index[@]} > 0)) && sleep 0.05
+        ((${#pool_index[@]} > 0)) && sleep 0.05
     done
-    return $((failed > 255 ? 255 : failed))
+    return $((pool_failed > 255 ? 255 : pool_failed))
 }
 
 # ---------------------------------------------------------------------------

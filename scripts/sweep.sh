@@ -13,8 +13,9 @@
 # need no quotes), then runs them, N at a time (one thread each), each
 # into OUTDIR/runs/case_NNNN/ (the program's output files, run.log with
 # its stdout and stderr, exit_status), with a progress line on stderr
-# ("done 37/120, 2 failed, eta 0:41"), and finally writes and prints OUTDIR/table.txt: one row per case with the swept
-# values, steady_force_over_Eh, peak_force_over_Eh, final_lift_over_Eh,
+# ("done 37/120, 2 failed, eta 0:41"), and finally writes and prints
+# OUTDIR/table.txt: one row per case with the swept values,
+# steady_force_over_Eh, peak_force_over_Eh, final_lift_over_Eh,
 # delta_cr_over_h, max_thinning (from summary.txt) and the status:
 # completed, localized, no_convergence, bad_input (the deck was rejected),
 # or not_run; every failed case is listed under the table with the
@@ -182,6 +183,7 @@ fi
 # Local runs, jobs_max at a time, with a progress line
 # ---------------------------------------------------------------------------
 # hms SECONDS: h:mm:ss or m:ss
+# shellcheck disable=SC2317 # called by progress
 hms() {
     local s=$1
     if ((s >= 3600)); then
@@ -194,6 +196,7 @@ hms() {
 tty=0
 [[ -t 2 ]] && tty=1
 # progress INDEX STATUS: count a finished run and print the progress line
+# shellcheck disable=SC2317 # called by run_pool
 progress() {
     local eta
     finished=$((finished + 1))
