@@ -90,4 +90,5 @@ done
 [[ -d $sweepdir ]] || die "no folder '$sweepdir'"
 [[ -n $outdir ]] || outdir=$sweepdir/bead_curves
 
+write_statuses "$sweepdir"
 python3 "$root/scripts/sweep_tool.py" curves "$sweepdir" "$outdir" "${extra[@]}"

@@ -189,3 +189,15 @@ run_status() {
         *) echo "failed_exit_$rc" ;;
     esac
 }
+
+# write_statuses SWEEPDIR: SWEEPDIR/status.tsv, one line "case<TAB>status"
+# (run_status of SWEEPDIR/runs/<case>) per deck of SWEEPDIR/decks.txt, for
+# scripts/sweep_tool.py; dies if there is no deck list
+write_statuses() {
+    local deck name
+    [[ -r $1/decks.txt ]] || die "no $1/decks.txt: not a sweep folder"
+    while read -r deck; do
+        name=$(basename "$deck" .nml)
+        printf '%s\t%s\n' "$name" "$(run_status "$1/runs/$name")"
+    done <"$1/decks.txt" >"$1/status.tsv" || die "cannot write $1/status.tsv"
+}

@@ -20,8 +20,9 @@
 # completed, localized, no_convergence, bad_input (the deck was rejected),
 # or not_run; every failed case is listed under the table with the
 # program's error message. OUTDIR/decks.txt lists the decks (line k+1 is
-# case k), OUTDIR/cases.tsv the swept values and OUTDIR/variables.txt
-# the program's list of deck variables.
+# case k), OUTDIR/cases.tsv the swept values, OUTDIR/status.tsv the
+# status of each case and OUTDIR/variables.txt the program's list of deck
+# variables.
 #
 # Example (a sweep over friction and lock depth of the free-edge bead A):
 #   scripts/sweep.sh -o out/sweep_a input/fig9c_beadA_steel_free.nml \
@@ -115,6 +116,7 @@ done
 
 if [[ -n $collect ]]; then
     ((${#args[@]} == 0)) || die "--collect takes only the sweep folder"
+    write_statuses "$collect"
     python3 "$tool" collect "$collect"
     exit $?
 fi
@@ -219,6 +221,7 @@ pool_dirs=()
 for deck in "${decks[@]}"; do pool_dirs+=("$outdir/runs/$(basename "$deck" .nml)"); done
 run_pool "$jobs_max" progress
 
+write_statuses "$outdir"
 python3 "$tool" collect "$outdir"
 collect_status=$?
 ((collect_status <= 1)) || exit 2

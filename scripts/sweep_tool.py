@@ -14,8 +14,9 @@ Subcommands:
       empty value list, unreadable deck).
 
   collect OUTDIR
-      Build OUTDIR/table.txt from cases.tsv and OUTDIR/runs/<case>/
-      (summary.txt, exit_status, run.log) and print it. A run that failed
+      Build OUTDIR/table.txt from cases.tsv, status.tsv (each case's
+      status, written by scripts/lib.sh's write_statuses) and
+      OUTDIR/runs/<case>/ (summary.txt, run.log) and print it. A run that failed
       keeps its row, with its status (bad_input, no_convergence, ...) and
       the program's first error message in a '#' line below the table.
       Exit status 1 if any case failed or has not run yet.
@@ -313,15 +314,22 @@ def read_cases(outdir):
     return names, cases
 
 
-def run_result(outdir, case):
+def read_statuses(outdir):
+    """case -> status of each run, from OUTDIR/status.tsv (written by
+    write_statuses of scripts/lib.sh, which names the exit statuses)."""
+    path = os.path.join(outdir, 'status.tsv')
+    try:
+        with open(path) as f:
+            return dict(ln.rstrip('\n').split('\t', 1) for ln in f if '\t' in ln)
+    except OSError:
+        die('no %s: run the sweep through scripts/sweep.sh' % path)
+
+
+def run_result(outdir, case, statuses):
     """(status, summary dict or None, first error line or '') of one case."""
     rundir = os.path.join(outdir, 'runs', case)
     summ = read_summary(os.path.join(rundir, 'summary.txt'))
-    try:
-        with open(os.path.join(rundir, 'exit_status')) as f:
-            rc = f.read().strip()
-    except OSError:
-        rc = None
+    status = statuses.get(case, 'not_run')
     err = ''
     try:
         with open(os.path.join(rundir, 'run.log'), errors='replace') as f:
@@ -331,16 +339,9 @@ def run_result(outdir, case):
                     break
     except OSError:
         pass
-    if rc is None:
-        status = 'not_run'
-    elif rc == '1':
-        status = 'bad_input'
-    elif rc in ('0', '2'):
-        status = (summ or {}).get('status') or ('no_convergence' if rc == '2' else 'no_summary')
-    else:
-        status = 'failed_exit_%s' % rc
-        if not err:
-            err = 'the program stopped with exit status %s (crash or signal?)' % rc
+    if status.startswith('failed_exit_') and not err:
+        err = ('the program stopped with exit status %s (crash or signal?)'
+               % status[len('failed_exit_'):])
     return status, summ, err
 
 
@@ -363,11 +364,12 @@ def cmd_collect(args):
         die('usage: sweep_tool.py collect OUTDIR')
     outdir = args[0]
     names, cases = read_cases(outdir)
+    statuses = read_statuses(outdir)
     header = ['case'] + names + RESULT_KEYS + ['status']
     rows, notes, not_run = [], [], []
     failed = 0
     for c in cases:
-        status, summ, err = run_result(outdir, c[0])
+        status, summ, err = run_result(outdir, c[0], statuses)
         vals = [fmt_num((summ or {}).get(k)) for k in RESULT_KEYS]
         rows.append([c[0]] + [table_value(v) for v in c[1:]] + vals + [status])
         if status == 'not_run':
@@ -492,6 +494,7 @@ def cmd_curves(args):
         die('usage: sweep_tool.py curves SWEEPDIR OUTDIR [--no-origin] [--lcid=N]')
     sweepdir, outdir = rest
     names, cases = read_cases(sweepdir)
+    statuses = read_statuses(sweepdir)
     if 'lock_depth' not in names:
         die('%s is not a sweep over lock_depth (swept: %s)' % (sweepdir, ', '.join(names) or 'nothing'))
     ilock = names.index('lock_depth')
@@ -513,7 +516,7 @@ def cmd_curves(args):
         rf, nf, used_peak, torn = [], [], [], []
         for c in groups[key]:
             depth = float(c[1 + ilock])
-            status, summ, _ = run_result(sweepdir, c[0])
+            status, summ, _ = run_result(sweepdir, c[0], statuses)
             if summ is None or status not in ('completed', 'localized'):
                 skipped.append('%s (lock_depth = %s): %s' % (c[0], c[1 + ilock], status))
                 continue
