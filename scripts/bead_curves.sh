@@ -47,24 +47,18 @@
 # usage error.
 set -u -o pipefail
 
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd) || exit 2
-
-usage() {
-    sed -n '2,/^set -u/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'
-}
-
-die() {
-    echo "bead_curves.sh: $*" >&2
-    exit 2
-}
+# shellcheck source=scripts/lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" || exit 2
 
 outdir=''
 extra=()
 sweepdir=''
+split_options "$@"
+set -- "${split_args[@]}"
 while (($# > 0)); do
     case $1 in
         -o | --output)
-            (($# >= 2)) || die "$1 needs a directory"
+            need_value "a directory" "$@"
             outdir=$2
             shift 2
             ;;
@@ -73,8 +67,8 @@ while (($# > 0)); do
             shift
             ;;
         --lcid)
-            (($# >= 2)) || die "--lcid needs a number"
-            [[ $2 =~ ^[1-9][0-9]*$ ]] || die "--lcid needs a positive integer"
+            need_value "a number" "$@"
+            check_count --lcid "$2"
             extra+=("--lcid=$2")
             shift 2
             ;;
@@ -96,4 +90,5 @@ done
 [[ -d $sweepdir ]] || die "no folder '$sweepdir'"
 [[ -n $outdir ]] || outdir=$sweepdir/bead_curves
 
+write_statuses "$sweepdir"
 python3 "$root/scripts/sweep_tool.py" curves "$sweepdir" "$outdir" "${extra[@]}"

@@ -39,16 +39,8 @@
 # or build error.
 set -u -o pipefail
 
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd) || exit 2
-
-usage() {
-    sed -n '2,/^set -u/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'
-}
-
-die() {
-    echo "bench.sh: $*" >&2
-    exit 2
-}
+# shellcheck source=scripts/lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" || exit 2
 
 runs=${BENCH_RUNS:-3}
 build_dir=${BENCH_BUILD_DIR:-}
@@ -58,12 +50,12 @@ keep_dir=''
 markdown=0
 decks=()
 
+split_options "$@"
+set -- "${split_args[@]}"
 while (($# > 0)); do
-    # --option=value is read as --option value
-    if [[ $1 == --*=* ]]; then set -- "${1%%=*}" "${1#*=}" "${@:2}"; fi
     case $1 in
         -n)
-            (($# >= 2)) || die "-n needs a number"
+            need_value "a number" "$@"
             runs=$2
             shift 2
             ;;
@@ -72,12 +64,12 @@ while (($# > 0)); do
             shift
             ;;
         --build-dir)
-            (($# >= 2)) || die "--build-dir needs a directory"
+            need_value "a directory" "$@"
             build_dir=$2
             shift 2
             ;;
         --fflags)
-            (($# >= 2)) || die "--fflags needs a value"
+            need_value "a value" "$@"
             fflags=$2
             shift 2
             ;;
@@ -86,7 +78,7 @@ while (($# > 0)); do
             shift
             ;;
         --keep)
-            (($# >= 2)) || die "--keep needs a directory"
+            need_value "a directory" "$@"
             keep_dir=$2
             shift 2
             ;;
@@ -113,7 +105,7 @@ while (($# > 0)); do
     esac
 done
 
-[[ $runs =~ ^[1-9][0-9]*$ ]] || die "-n must be a positive integer (got '$runs')"
+check_count -n "$runs"
 
 if ((${#decks[@]} == 0)); then
     shopt -s nullglob
@@ -128,7 +120,7 @@ done
 # ---------------------------------------------------------------------------
 # Build
 # ---------------------------------------------------------------------------
-make_args=(-s -C "$root")
+make_args=()
 if [[ -n $build_dir ]]; then
     [[ $build_dir == /* ]] || build_dir=$PWD/$build_dir
     bin=$build_dir/drawbead
@@ -143,9 +135,9 @@ if [[ -n $fflags ]]; then
 fi
 
 if ((do_build)); then
-    echo "bench.sh: make ${make_args[*]}" >&2
     # FFLAGS from the environment would override the Makefile's release flags
-    env -u FFLAGS make "${make_args[@]}" all >&2 || die "build failed"
+    unset FFLAGS
+    build_program "${make_args[@]}" all
 fi
 [[ -x $bin ]] || die "no executable '$bin' (build it first, or drop --no-build)"
 
@@ -174,16 +166,11 @@ now() {
     fi
 }
 
-# summary_value FILE KEY -- the value of 'KEY = value' in FILE, or '-'
-summary_value() {
-    local value
-    if [[ -f $1 ]]; then
-        value=$(awk -v key="$2" -F '=' '
-            { k = $1; gsub(/^[ \t]+|[ \t]+$/, "", k) }
-            k == key { v = substr($0, index($0, "=") + 1); gsub(/^[ \t]+|[ \t]+$/, "", v); print v; exit }
-        ' "$1")
-    fi
-    printf '%s\n' "${value:--}"
+# value FILE KEY -- the summary value, or '-'
+value() {
+    local v
+    v=$(summary_value "$1" "$2")
+    printf '%s\n' "${v:--}"
 }
 
 # stats T1 T2 ... -- "median min max" of the numbers, 3 decimals
@@ -212,7 +199,7 @@ for deck in "${decks[@]}"; do
         dir=$scratch/$name/run$i
         rm -rf "$dir"
         mkdir -p "$dir" || die "cannot create '$dir'"
-        printf 'bench.sh: %s run %d/%d ... ' "$name" "$i" "$runs" >&2
+        printf '%s: %s run %d/%d ... ' "$me" "$name" "$i" "$runs" >&2
         t0=$(now)
         "$bin" "$deck" --output "$dir" >/dev/null 2>"$dir.stderr"
         rc=$?
@@ -223,19 +210,19 @@ for deck in "${decks[@]}"; do
         if ((rc != 0)); then
             deck_status=$rc
             failures=$((failures + 1))
-            echo "bench.sh: $deck exited with status $rc; its stderr:" >&2
+            note "$deck exited with status $rc; its stderr:"
             sed 's/^/    /' "$dir.stderr" >&2
         fi
-        cpu=$(summary_value "$dir/summary.txt" cpu_seconds)
+        cpu=$(value "$dir/summary.txt" cpu_seconds)
         if [[ $cpu != - ]]; then cpus+=("$cpu"); fi
         # the runs of a deck must agree: compare the counters with run 1
         this=$(for key in status increments newton_iterations cutbacks; do
-            summary_value "$dir/summary.txt" "$key"
+            value "$dir/summary.txt" "$key"
         done | tr '\n' ' ')
         if ((i == 1)); then
             first_summary=$this
         elif [[ $this != "$first_summary" ]]; then
-            echo "bench.sh: warning: $name run $i summary ($this) differs from run 1 ($first_summary)" >&2
+            note "warning: $name run $i summary ($this) differs from run 1 ($first_summary)"
         fi
     done
     summary=$scratch/$name/run1/summary.txt
@@ -244,11 +231,11 @@ for deck in "${decks[@]}"; do
     if ((${#cpus[@]} > 0)); then
         read -r cpu_med _ < <(stats "${cpus[@]}")
     fi
-    status=$(summary_value "$summary" status)
+    status=$(value "$summary" status)
     ((deck_status == 0)) || status="$status(exit $deck_status)"
     fields=("$name" "$med" "$tmin" "$tmax" "$cpu_med")
     for key in increments newton_iterations cutbacks; do
-        fields+=("$(summary_value "$summary" "$key")")
+        fields+=("$(value "$summary" "$key")")
     done
     fields+=("$status")
     # one tab-separated row per deck (deck names may hold blanks)
@@ -294,7 +281,7 @@ else
 fi
 
 if ((failures > 0)); then
-    echo "bench.sh: $failures run(s) exited with a non-zero status" >&2
+    note "$failures run(s) exited with a non-zero status"
     exit 1
 fi
 exit 0

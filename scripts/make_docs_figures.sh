@@ -14,15 +14,14 @@
 # or a figure is missing (the others are still copied); 2 on a usage error.
 set -u -o pipefail
 
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd) || exit 2
-
-usage() {
-    sed -n '2,/^set -u/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'
-}
+# shellcheck source=scripts/lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" || exit 2
 
 run=0
 jobs=()
 figdir=$root/out/figures
+split_options "$@"
+set -- "${split_args[@]}"
 while (($# > 0)); do
     case $1 in
         --run)
@@ -30,7 +29,8 @@ while (($# > 0)); do
             shift
             ;;
         -j)
-            (($# >= 2)) || { echo "make_docs_figures.sh: -j needs a number" >&2; exit 2; }
+            need_value "a number" "$@"
+            check_count -j "$2"
             jobs=(-j "$2")
             shift 2
             ;;
@@ -39,8 +39,7 @@ while (($# > 0)); do
             exit 0
             ;;
         -*)
-            echo "make_docs_figures.sh: unknown option '$1'" >&2
-            exit 2
+            die "unknown option '$1' (see --help)"
             ;;
         *)
             figdir=$1
@@ -65,9 +64,9 @@ for f in "${figures[@]}"; do
         cp "$figdir/$f.png" "$dest/$f.png" || status=1
         copied=$((copied + 1))
     else
-        echo "make_docs_figures.sh: missing $figdir/$f.png" >&2
+        note "missing $figdir/$f.png"
         status=1
     fi
 done
-echo "make_docs_figures.sh: copied $copied of ${#figures[@]} figures into $dest" >&2
+note "copied $copied of ${#figures[@]} figures into $dest"
 exit "$status"

@@ -5,7 +5,8 @@
 # Usage: scripts/run_paper.sh [options]
 #
 # Builds the program if needed (make -s), runs every paper deck
-# (input/fig*.nml) with as many runs at a time as there are cores, each
+# (input/fig*.nml) with as many runs at a time as there are cores (one
+# thread each), each
 # into OUT/<deck>/ (OUT = out/ of the repository by default) with its log
 # (stdout and stderr) in OUT/<deck>/run.log and the exit status in
 # OUT/<deck>/exit_status, then draws the paper's figures into OUT/figures/
@@ -51,33 +52,25 @@
 # says so) or a figure failed; 2 on a usage or build error.
 set -u -o pipefail
 
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd) || exit 2
+# shellcheck source=scripts/lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" || exit 2
 scripts=$root/scripts
-
-usage() {
-    sed -n '2,/^set -u/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'
-}
-
-die() {
-    echo "run_paper.sh: $*" >&2
-    exit 2
-}
 
 jobs_max=$(nproc 2>/dev/null || echo 2)
 deck_list=${PAPER_DECKS:-}
 outroot=$root/out
-bin=${DRAWBEAD:-}
+program=${DRAWBEAD:-}
 do_build=1
 do_figures=1
 do_run=1
 markdown=0
 
+split_options "$@"
+set -- "${split_args[@]}"
 while (($# > 0)); do
-    # --option=value is read as --option value
-    if [[ $1 == --*=* ]]; then set -- "${1%%=*}" "${1#*=}" "${@:2}"; fi
     case $1 in
         -j)
-            (($# >= 2)) || die "-j needs a number"
+            need_value "a number" "$@"
             jobs_max=$2
             shift 2
             ;;
@@ -86,18 +79,18 @@ while (($# > 0)); do
             shift
             ;;
         --decks)
-            (($# >= 2)) || die "--decks needs a list of decks"
+            need_value "a list of decks" "$@"
             deck_list=$2
             shift 2
             ;;
         -o | --output)
-            (($# >= 2)) || die "$1 needs a directory"
+            need_value "a directory" "$@"
             outroot=$2
             shift 2
             ;;
         --bin)
-            (($# >= 2)) || die "--bin needs a path"
-            bin=$2
+            need_value "a path" "$@"
+            program=$2
             shift 2
             ;;
         --no-build)
@@ -127,22 +120,8 @@ while (($# > 0)); do
     esac
 done
 
-[[ $jobs_max =~ ^[1-9][0-9]*$ ]] || die "-j needs a positive number, not '$jobs_max'"
-
-# ---------------------------------------------------------------------------
-# The program
-# ---------------------------------------------------------------------------
-if [[ -z $bin ]]; then
-    bin=$root/bin/drawbead
-    if ((do_build)); then
-        echo "run_paper.sh: make -s" >&2
-        make -s -C "$root" >&2 || die "the build failed"
-    fi
-fi
-if ((do_run)); then
-    [[ -x $bin ]] || die "no executable program '$bin' (build it with make)"
-    [[ $bin == /* ]] || bin=$PWD/$bin
-fi
+check_count -j "$jobs_max"
+if ((do_run)); then find_program "$program" "$do_build"; fi
 
 # ---------------------------------------------------------------------------
 # The decks
@@ -172,84 +151,34 @@ mkdir -p "$outroot" || die "cannot create '$outroot'"
 # ---------------------------------------------------------------------------
 # The runs, jobs_max at a time
 # ---------------------------------------------------------------------------
-# run_one DECK DIR: run the program on DECK into DIR (log in DIR/run.log,
-# exit status in DIR/exit_status); removes the outputs of an earlier run
-# first, so that a failed run cannot leave stale results behind.
-run_one() {
-    local deck=$1 dir=$2 rc
-    mkdir -p "$dir" || return 1
-    rm -f "$dir"/lock.dat "$dir"/pull.dat "$dir"/strain_lock.dat "$dir"/strain_pull.dat \
-        "$dir"/tools_lock.dat "$dir"/tools_pull.dat "$dir"/summary.txt "$dir"/exit_status
-    "$bin" "$deck" --output "$dir" >"$dir/run.log" 2>&1
-    rc=$?
-    echo "$rc" >"$dir/exit_status"
-    return "$rc"
-}
-
-# summary_value DIR KEY: a value of DIR/summary.txt ('' if absent)
-summary_value() {
-    [[ -r $1/summary.txt ]] || return 0
-    awk -F' = ' -v k="$2" '$1 == k { print $2; exit }' "$1/summary.txt"
-}
-
-# run_status DIR: the status of a finished run, for the table
-run_status() {
-    local rc
-    rc=$(cat "$1/exit_status" 2>/dev/null || echo '?')
-    case $rc in
-        0 | 2)
-            local s
-            s=$(summary_value "$1" status)
-            if [[ -n $s ]]; then
-                echo "$s"
-            elif [[ $rc == 2 ]]; then
-                echo no_convergence
-            else
-                echo "no_summary"
-            fi
-            ;;
-        1) echo bad_input ;;
-        '?') echo not_run ;;
-        *) echo "failed_exit_$rc" ;;
-    esac
-}
-
 total=${#decks[@]}
 t0=$SECONDS
 finished=0
 failed=0
 if ((do_run)); then
-    echo "run_paper.sh: $total decks, $jobs_max at a time, into $outroot/ ($bin)" >&2
+    note "$total decks, $jobs_max at a time, into $outroot/ ($bin)"
 else
     # the outputs already there: count the runs that failed or are missing
     finished=$total
     for name in "${names[@]}"; do
-        [[ $(cat "$outroot/$name/exit_status" 2>/dev/null) == 0 ]] || failed=$((failed + 1))
+        [[ $(cat "$outroot/$name/exit_status" 2>/dev/null) == "$exit_ok" ]] || failed=$((failed + 1))
     done
 fi
-declare -A pid_index=()
-next=0
-while ((finished < total)); do
-    while ((${#pid_index[@]} < jobs_max && next < total)); do
-        run_one "${decks[next]}" "$outroot/${names[next]}" &
-        pid_index[$!]=$next
-        next=$((next + 1))
-    done
-    running=" $(jobs -rp | tr '\n' ' ') "
-    for pid in "${!pid_index[@]}"; do
-        [[ $running == *" $pid "* ]] && continue
-        wait "$pid"
-        rc=$?
-        i=${pid_index[$pid]}
-        unset "pid_index[$pid]"
-        finished=$((finished + 1))
-        ((rc == 0)) || failed=$((failed + 1))
-        printf 'run_paper.sh: [%d/%d] %-30s exit %d  %s\n' "$finished" "$total" "${names[i]}" \
-            "$rc" "$(run_status "$outroot/${names[i]}")" >&2
-    done
-    ((finished < total)) && sleep 0.1
-done
-((do_run)) && echo "run_paper.sh: runs finished in $((SECONDS - t0)) s, $failed failed" >&2
+# reported INDEX STATUS: count a finished run and report it
+# shellcheck disable=SC2317 # called by run_pool
+reported() {
+    finished=$((finished + 1))
+    (($2 == 0)) || failed=$((failed + 1))
+    printf '%s: [%d/%d] %-30s exit %d  %s\n' "$me" "$finished" "$total" "${names[$1]}" \
+        "$2" "$(run_status "$outroot/${names[$1]}")" >&2
+}
+if ((do_run)); then
+    pool_decks=("${decks[@]}")
+    pool_dirs=()
+    for name in "${names[@]}"; do pool_dirs+=("$outroot/$name"); done
+    run_pool "$jobs_max" reported
+fi
+((do_run)) && note "runs finished in $((SECONDS - t0)) s, $failed failed"
 
 # ---------------------------------------------------------------------------
 # The figures
@@ -273,13 +202,13 @@ gp() {
     shift
     if gnuplot -c "$scripts/$script" "$@" 2>"$figdir/.gnuplot.err"; then
         if [[ -s $out ]]; then
-            echo "run_paper.sh: drew $out" >&2
+            note "drew $out"
         else
-            echo "run_paper.sh: gnuplot wrote no $out" >&2
+            note "gnuplot wrote no $out"
             figure_failures=$((figure_failures + 1))
         fi
     else
-        echo "run_paper.sh: gnuplot failed on $out:" >&2
+        note "gnuplot failed on $out:"
         sed 's/^/    /' "$figdir/.gnuplot.err" >&2
         figure_failures=$((figure_failures + 1))
     fi
@@ -325,7 +254,7 @@ shape_figures() {
 
 if ((do_figures)); then
     if ! command -v gnuplot >/dev/null; then
-        echo "run_paper.sh: gnuplot not found (apt-get install gnuplot-nox): no figures" >&2
+        note "gnuplot not found (apt-get install gnuplot-nox): no figures"
         figure_failures=1
     else
         mkdir -p "$figdir" || die "cannot create '$figdir'"
@@ -392,13 +321,13 @@ rows=()
 for name in "${names[@]}"; do
     dir=$outroot/$name
     row=("$name"
-        "$(fmt %.3f "$(summary_value "$dir" delta_cr_over_h)")"
-        "$(fmt %.2f "$(summary_value "$dir" s_star_over_h)")"
-        "$(fmt %.3f "$(summary_value "$dir" delta_cr_nonlocal_over_h)")"
-        "$(fmt %.4e "$(summary_value "$dir" peak_force_over_Eh)")"
-        "$(fmt %.4e "$(summary_value "$dir" steady_force_over_Eh)")"
-        "$(fmt %.4e "$(summary_value "$dir" lock_force_over_Eh)")"
-        "$(fmt %.2f "$(summary_value "$dir" cpu_seconds)")"
+        "$(fmt %.3f "$(summary_value "$dir/summary.txt" delta_cr_over_h)")"
+        "$(fmt %.2f "$(summary_value "$dir/summary.txt" s_star_over_h)")"
+        "$(fmt %.3f "$(summary_value "$dir/summary.txt" delta_cr_nonlocal_over_h)")"
+        "$(fmt %.4e "$(summary_value "$dir/summary.txt" peak_force_over_Eh)")"
+        "$(fmt %.4e "$(summary_value "$dir/summary.txt" steady_force_over_Eh)")"
+        "$(fmt %.4e "$(summary_value "$dir/summary.txt" lock_force_over_Eh)")"
+        "$(fmt %.2f "$(summary_value "$dir/summary.txt" cpu_seconds)")"
         "$(run_status "$dir")")
     rows+=("$(printf '%s\t' "${row[@]}")")
 done
@@ -444,11 +373,11 @@ print_table | tee "$outroot/paper_table.txt"
 
 status=0
 if ((failed > 0)); then
-    echo "run_paper.sh: $failed of $total runs failed (see $outroot/<deck>/run.log)" >&2
+    note "$failed of $total runs failed (see $outroot/<deck>/run.log)"
     status=1
 fi
 if ((figure_failures > 0)); then
-    echo "run_paper.sh: $figure_failures figures failed" >&2
+    note "$figure_failures figures failed"
     status=1
 fi
 exit "$status"

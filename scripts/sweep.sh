@@ -8,18 +8,21 @@
 # Writes one deck per combination of the values (the cartesian product;
 # the first variable varies slowest) into OUTDIR/decks/case_NNNN.nml, made
 # from BASE.nml by overriding the named namelist variables (any variable
-# of the deck reference: the group that holds it in the base deck is used,
-# or the variable is added to its group; text values need no quotes), then
-# runs them, N at a time, each into OUTDIR/runs/case_NNNN/ (the program's
-# output files, run.log with its stdout and stderr, exit_status), with a
-# progress line on stderr ("done 37/120, 2 failed, eta 0:41"), and finally
-# writes and prints OUTDIR/table.txt: one row per case with the swept
-# values, steady_force_over_Eh, peak_force_over_Eh, final_lift_over_Eh,
+# the program lists with --list-variables: the group that holds it in the
+# base deck is used, or the variable is added to its group; text values
+# need no quotes), then runs them, N at a time (one thread each), each
+# into OUTDIR/runs/case_NNNN/ (the program's output files, run.log with
+# its stdout and stderr, exit_status), with a progress line on stderr
+# ("done 37/120, 2 failed, eta 0:41"), and finally writes and prints
+# OUTDIR/table.txt: one row per case with the swept values,
+# steady_force_over_Eh, peak_force_over_Eh, final_lift_over_Eh,
 # delta_cr_over_h, max_thinning (from summary.txt) and the status:
 # completed, localized, no_convergence, bad_input (the deck was rejected),
 # or not_run; every failed case is listed under the table with the
 # program's error message. OUTDIR/decks.txt lists the decks (line k+1 is
-# case k) and OUTDIR/cases.tsv the swept values.
+# case k), OUTDIR/cases.tsv the swept values, OUTDIR/status.tsv the
+# status of each case and OUTDIR/variables.txt the program's list of deck
+# variables.
 #
 # Example (a sweep over friction and lock depth of the free-edge bead A):
 #   scripts/sweep.sh -o out/sweep_a input/fig9c_beadA_steel_free.nml \
@@ -49,32 +52,24 @@
 # in the table); 2 on a usage, deck or build error.
 set -u -o pipefail
 
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd) || exit 2
+# shellcheck source=scripts/lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" || exit 2
 tool=$root/scripts/sweep_tool.py
-
-usage() {
-    sed -n '2,/^set -u/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'
-}
-
-die() {
-    echo "sweep.sh: $*" >&2
-    exit 2
-}
 
 jobs_max=$(nproc 2>/dev/null || echo 2)
 outdir=''
-bin=${DRAWBEAD:-}
+program=${DRAWBEAD:-}
 do_build=1
 slurm=0
 collect=''
 args=()
 
+split_options "$@"
+set -- "${split_args[@]}"
 while (($# > 0)); do
-    # --option=value is read as --option value
-    if [[ $1 == --*=* ]]; then set -- "${1%%=*}" "${1#*=}" "${@:2}"; fi
     case $1 in
         -j)
-            (($# >= 2)) || die "-j needs a number"
+            need_value "a number" "$@"
             jobs_max=$2
             shift 2
             ;;
@@ -83,13 +78,13 @@ while (($# > 0)); do
             shift
             ;;
         -o | --output)
-            (($# >= 2)) || die "$1 needs a directory"
+            need_value "a directory" "$@"
             outdir=$2
             shift 2
             ;;
         --bin)
-            (($# >= 2)) || die "--bin needs a path"
-            bin=$2
+            need_value "a path" "$@"
+            program=$2
             shift 2
             ;;
         --no-build)
@@ -101,7 +96,7 @@ while (($# > 0)); do
             shift
             ;;
         --collect)
-            (($# >= 2)) || die "--collect needs the sweep folder"
+            need_value "the sweep folder" "$@"
             collect=$2
             shift 2
             ;;
@@ -121,37 +116,29 @@ done
 
 if [[ -n $collect ]]; then
     ((${#args[@]} == 0)) || die "--collect takes only the sweep folder"
+    write_statuses "$collect"
     python3 "$tool" collect "$collect"
     exit $?
 fi
 
 ((${#args[@]} >= 2)) || die "usage: sweep.sh [-j N] [--slurm] [-o OUTDIR] BASE.nml VAR=V1,V2,... (see --help)"
-[[ $jobs_max =~ ^[1-9][0-9]*$ ]] || die "-j needs a positive number, not '$jobs_max'"
+check_count -j "$jobs_max"
 base=${args[0]}
 [[ -r $base ]] || die "cannot read the base deck '$base'"
 [[ -n $outdir ]] || outdir=$root/out/sweep_$(basename "$base" .nml)
+find_program "$program" "$do_build"
 
 # ---------------------------------------------------------------------------
-# The program
-# ---------------------------------------------------------------------------
-if [[ -z $bin ]]; then
-    bin=$root/bin/drawbead
-    if ((do_build)); then
-        make -s -C "$root" >&2 || die "the build failed"
-    fi
-fi
-[[ -x $bin ]] || die "no executable program '$bin' (build it with make)"
-[[ $bin == /* ]] || bin=$PWD/$bin
-
-# ---------------------------------------------------------------------------
-# The decks
+# The decks, with the deck variables the program knows
 # ---------------------------------------------------------------------------
 mkdir -p "$outdir" || die "cannot create '$outdir'"
 outdir=$(cd "$outdir" && pwd) || die "cannot enter '$outdir'"
-ndecks=$(python3 "$tool" decks "$outdir" "${args[@]}") || exit 2
+"$bin" --list-variables >"$outdir/variables.txt" ||
+    die "'$bin --list-variables' failed: cannot learn the deck variables"
+ndecks=$(python3 "$tool" decks "$outdir" "$outdir/variables.txt" "${args[@]}") || exit 2
 mapfile -t decks <"$outdir/decks.txt"
 ((${#decks[@]} == ndecks && ndecks > 0)) || die "the deck list $outdir/decks.txt is inconsistent"
-echo "sweep.sh: $ndecks decks in $outdir/decks/" >&2
+note "$ndecks decks in $outdir/decks/"
 
 # ---------------------------------------------------------------------------
 # Slurm: write the job-array script and stop
@@ -174,6 +161,7 @@ if ((slurm)); then
         echo "#SBATCH --output=$outdir/slurm/%A_%a.out"
         cat <<EOF
 set -u
+source '$root/scripts/lib.sh' || exit 1
 bin='$bin'
 outdir='$outdir'
 cd '$workdir' || exit 1
@@ -183,38 +171,21 @@ if [[ -z \$deck ]]; then
     echo "sweep.slurm: no deck for task \$task in \$outdir/decks.txt" >&2
     exit 1
 fi
-dir=\$outdir/runs/\$(basename "\$deck" .nml)
-mkdir -p "\$dir" || exit 1
-rm -f "\$dir"/lock.dat "\$dir"/pull.dat "\$dir"/strain_lock.dat "\$dir"/strain_pull.dat \\
-    "\$dir"/tools_lock.dat "\$dir"/tools_pull.dat "\$dir"/summary.txt "\$dir"/exit_status
-"\$bin" "\$deck" --output "\$dir" >"\$dir/run.log" 2>&1
-rc=\$?
-echo "\$rc" >"\$dir/exit_status"
-exit "\$rc"
+run_deck "\$bin" "\$deck" "\$outdir/runs/\$(basename "\$deck" .nml)"
 EOF
     } >"$script" || die "cannot write '$script'"
     chmod +x "$script"
-    echo "sweep.sh: wrote $script (array 0-$((ndecks - 1)))" >&2
-    echo "sweep.sh: submit with:  sbatch $script" >&2
-    echo "sweep.sh: then collect: $root/scripts/sweep.sh --collect $outdir" >&2
+    note "wrote $script (array 0-$((ndecks - 1)))"
+    note "submit with:  sbatch $script"
+    note "then collect: $root/scripts/sweep.sh --collect $outdir"
     exit 0
 fi
 
 # ---------------------------------------------------------------------------
 # Local runs, jobs_max at a time, with a progress line
 # ---------------------------------------------------------------------------
-run_one() {
-    local deck=$1 dir=$2 rc
-    mkdir -p "$dir" || return 1
-    rm -f "$dir"/lock.dat "$dir"/pull.dat "$dir"/strain_lock.dat "$dir"/strain_pull.dat \
-        "$dir"/tools_lock.dat "$dir"/tools_pull.dat "$dir"/summary.txt "$dir"/exit_status
-    "$bin" "$deck" --output "$dir" >"$dir/run.log" 2>&1
-    rc=$?
-    echo "$rc" >"$dir/exit_status"
-    return "$rc"
-}
-
 # hms SECONDS: h:mm:ss or m:ss
+# shellcheck disable=SC2317 # called by progress
 hms() {
     local s=$1
     if ((s >= 3600)); then
@@ -226,11 +197,13 @@ hms() {
 
 tty=0
 [[ -t 2 ]] && tty=1
+# progress INDEX STATUS: count a finished run and print the progress line
+# shellcheck disable=SC2317 # called by run_pool
 progress() {
-    local eta='?'
-    if ((finished > 0)); then
-        eta=$(hms $(((SECONDS - t0) * (total - finished) / finished)))
-    fi
+    local eta
+    finished=$((finished + 1))
+    (($2 == 0)) || failed=$((failed + 1))
+    eta=$(hms $(((SECONDS - t0) * (total - finished) / finished)))
     if ((tty)); then
         printf '\rdone %d/%d, %d failed, eta %s   ' "$finished" "$total" "$failed" "$eta" >&2
         ((finished < total)) || echo >&2
@@ -241,35 +214,17 @@ progress() {
 
 total=$ndecks
 t0=$SECONDS
-declare -A pid_index=()
-next=0
 finished=0
 failed=0
-while ((finished < total)); do
-    while ((${#pid_index[@]} < jobs_max && next < total)); do
-        deck=${decks[next]}
-        run_one "$deck" "$outdir/runs/$(basename "$deck" .nml)" &
-        pid_index[$!]=$next
-        next=$((next + 1))
-    done
-    running=" $(jobs -rp | tr '\n' ' ') "
-    changed=0
-    for pid in "${!pid_index[@]}"; do
-        [[ $running == *" $pid "* ]] && continue
-        wait "$pid"
-        rc=$?
-        unset "pid_index[$pid]"
-        finished=$((finished + 1))
-        ((rc == 0)) || failed=$((failed + 1))
-        changed=1
-    done
-    ((changed)) && progress
-    ((finished < total)) && sleep 0.1
-done
+pool_decks=("${decks[@]}")
+pool_dirs=()
+for deck in "${decks[@]}"; do pool_dirs+=("$outdir/runs/$(basename "$deck" .nml)"); done
+run_pool "$jobs_max" progress
 
+write_statuses "$outdir"
 python3 "$tool" collect "$outdir"
 collect_status=$?
 ((collect_status <= 1)) || exit 2
-echo "sweep.sh: table in $outdir/table.txt" >&2
+note "table in $outdir/table.txt"
 ((failed == 0 && collect_status == 0)) || exit 1
 exit 0

@@ -3,8 +3,9 @@
 
 Subcommands:
 
-  decks OUTDIR BASE.nml VAR=V1,V2,... [VAR=...]
-      Write one deck per combination of the values (cartesian product, the
+  decks OUTDIR VARIABLES BASE.nml VAR=V1,V2,... [VAR=...]
+      VARIABLES is the output of `drawbead --list-variables` (one line per
+      deck variable: group, name, type). Write one deck per combination of the values (cartesian product, the
       first variable varying slowest) into OUTDIR/decks/case_NNNN.nml, by
       overriding the named namelist variables of the base deck; write the
       list of deck paths (absolute, one per line, line k+1 for case k) to
@@ -13,8 +14,9 @@ Subcommands:
       empty value list, unreadable deck).
 
   collect OUTDIR
-      Build OUTDIR/table.txt from cases.tsv and OUTDIR/runs/<case>/
-      (summary.txt, exit_status, run.log) and print it. A run that failed
+      Build OUTDIR/table.txt from cases.tsv, status.tsv (each case's
+      status, written by scripts/lib.sh's write_statuses) and
+      OUTDIR/runs/<case>/ (summary.txt, run.log) and print it. A run that failed
       keeps its row, with its status (bad_input, no_convergence, ...) and
       the program's first error message in a '#' line below the table.
       Exit status 1 if any case failed or has not run yet.
@@ -29,8 +31,8 @@ Subcommands:
 
 Overriding a variable: the group holding it in the base deck is used (its
 value replaced in place, comments kept); a variable the base deck does not
-set is added to its group (taken from the deck reference of README.md, the
-table GROUP_OF below), and a missing group is appended. Text values are
+set is added to its group (from the program's list of variables), and a
+missing group is appended. Text values are
 quoted if they are not already; logicals may be given as true/false.
 """
 
@@ -39,33 +41,10 @@ import os
 import re
 import sys
 
-# Variable -> namelist group (README.md, "Input deck reference")
-GROUP_OF = {
-    # &control
-    'title': 'control', 'output_dir': 'control', 'stop_at_localization': 'control',
-    'tearing_length': 'control', 'log_residuals': 'control', 'predictor': 'control',
-    # &sheet
-    'thickness': 'sheet', 'length': 'sheet', 'n_elements': 'sheet', 'mesh_beta': 'sheet',
-    'left_edge': 'sheet', 'back_tension': 'sheet',
-    # &material
-    'youngs_modulus': 'material', 'poissons_ratio': 'material', 'r_value': 'material',
-    'hardening': 'material', 'swift_k': 'material', 'swift_eps0': 'material',
-    'swift_n': 'material', 'voce_sigma0': 'material', 'voce_q': 'material',
-    'voce_b': 'material', 'curve_file': 'material', 'thickness_points': 'material',
-    # &tools
-    'bead': 'tools', 'r1': 'tools', 'r2': 'tools', 'b1': 'tools', 'b2': 'tools',
-    'h1': 'tools', 'h2': 'tools', 'upper_profile': 'tools', 'lower_profile': 'tools',
-    'penalty': 'tools', 'friction': 'tools', 'friction_eps': 'tools',
-    'contact_smoothing': 'tools',
-    # &loading
-    'lock_depth': 'loading', 'pull_distance': 'loading', 'initial_increment': 'loading',
-    'min_increment': 'loading', 'max_increment': 'loading', 'max_iterations': 'loading',
-    'tolerance': 'loading',
-}
-GROUP_ORDER = ['control', 'sheet', 'material', 'tools', 'loading']
-TEXT_VARS = {'title', 'output_dir', 'left_edge', 'hardening', 'curve_file', 'bead',
-             'upper_profile', 'lower_profile'}
-LOGICAL_VARS = {'stop_at_localization', 'log_residuals', 'predictor'}
+# Variable -> (namelist group, type), from the program's own list
+# (bin/drawbead --list-variables, read by read_variables)
+VARIABLES = {}
+TYPES = ('real', 'integer', 'logical', 'text')
 
 # the columns of table.txt after the swept variables
 RESULT_KEYS = ['steady_force_over_Eh', 'peak_force_over_Eh', 'final_lift_over_Eh',
@@ -75,6 +54,28 @@ RESULT_KEYS = ['steady_force_over_Eh', 'peak_force_over_Eh', 'final_lift_over_Eh
 def die(msg, status=2):
     sys.stderr.write('sweep: %s\n' % msg)
     sys.exit(status)
+
+
+def read_variables(path):
+    """Fill VARIABLES from the program's list of deck variables: lines
+    'group variable type', type one of TYPES."""
+    try:
+        with open(path) as f:
+            lines = [ln.split() for ln in f if ln.strip()]
+    except OSError as e:
+        die('cannot read the list of deck variables %s: %s' % (path, e.strerror))
+    for fields in lines:
+        if len(fields) != 3 or fields[2] not in TYPES:
+            die("the program's list of deck variables (%s) has a line '%s', not "
+                "'group variable type'" % (path, ' '.join(fields)))
+        VARIABLES[fields[1]] = (fields[0], fields[2])
+    if not VARIABLES:
+        die("the program's list of deck variables (%s) is empty" % path)
+
+
+def unknown_variable(var):
+    die("unknown variable '%s': not in the base deck, and not one of %s"
+        % (var, ', '.join(sorted(VARIABLES))))
 
 
 # ---------------------------------------------------------------------------
@@ -175,11 +176,12 @@ def find_assignment(text, group, var):
 
 def format_value(var, value):
     v = value.strip()
-    if var in TEXT_VARS:
+    kind = VARIABLES.get(var, ('', ''))[1]
+    if kind == 'text':
         if len(v) >= 2 and v[0] == v[-1] and v[0] in '\'"':
             return v
         return "'" + v.replace("'", "''") + "'"
-    if var in LOGICAL_VARS:
+    if kind == 'logical':
         low = v.lower()
         if low in ('true', 't', 'yes', '1', '.true.'):
             return '.true.'
@@ -195,10 +197,9 @@ def override(text, var, value):
         span = find_assignment(text, g, var)
         if span:
             return text[:span[0]] + value + text[span[1]:]
-    group = GROUP_OF.get(var)
-    if group is None:
-        die("unknown variable '%s': not in the base deck, and not one of %s"
-            % (var, ', '.join(sorted(GROUP_OF))))
+    if var not in VARIABLES:
+        unknown_variable(var)
+    group = VARIABLES[var][0]
     for g in groups:
         if g.name == group:
             # insert on its own line before the closing '/'
@@ -221,9 +222,10 @@ def deck_value(text, var):
 
 
 def cmd_decks(args):
-    if len(args) < 3:
-        die('usage: sweep_tool.py decks OUTDIR BASE.nml VAR=V1,V2,... ...')
-    outdir, base = args[0], args[1]
+    if len(args) < 4:
+        die('usage: sweep_tool.py decks OUTDIR VARIABLES BASE.nml VAR=V1,V2,... ...')
+    outdir, base = args[0], args[2]
+    read_variables(args[1])
     try:
         with open(base) as f:
             base_text = f.read()
@@ -231,7 +233,7 @@ def cmd_decks(args):
         die('cannot read the base deck %s: %s' % (base, e.strerror))
     find_groups(base_text)          # a malformed base deck stops here
     names, lists = [], []
-    for spec in args[2:]:
+    for spec in args[3:]:
         if '=' not in spec:
             die("'%s' is not VAR=V1,V2,..." % spec)
         var, values = spec.split('=', 1)
@@ -245,9 +247,8 @@ def cmd_decks(args):
         vals = [v.strip() for v in values.split(',')]
         if not values.strip() or any(v == '' for v in vals):
             die("empty value in '%s'" % spec)
-        if deck_value(base_text, var) is None and var not in GROUP_OF:
-            die("unknown variable '%s': not in the base deck, and not one of %s"
-                % (var, ', '.join(sorted(GROUP_OF))))
+        if deck_value(base_text, var) is None and var not in VARIABLES:
+            unknown_variable(var)
         names.append(var)
         lists.append(vals)
 
@@ -313,15 +314,22 @@ def read_cases(outdir):
     return names, cases
 
 
-def run_result(outdir, case):
+def read_statuses(outdir):
+    """case -> status of each run, from OUTDIR/status.tsv (written by
+    write_statuses of scripts/lib.sh, which names the exit statuses)."""
+    path = os.path.join(outdir, 'status.tsv')
+    try:
+        with open(path) as f:
+            return dict(ln.rstrip('\n').split('\t', 1) for ln in f if '\t' in ln)
+    except OSError:
+        die('no %s: run the sweep through scripts/sweep.sh' % path)
+
+
+def run_result(outdir, case, statuses):
     """(status, summary dict or None, first error line or '') of one case."""
     rundir = os.path.join(outdir, 'runs', case)
     summ = read_summary(os.path.join(rundir, 'summary.txt'))
-    try:
-        with open(os.path.join(rundir, 'exit_status')) as f:
-            rc = f.read().strip()
-    except OSError:
-        rc = None
+    status = statuses.get(case, 'not_run')
     err = ''
     try:
         with open(os.path.join(rundir, 'run.log'), errors='replace') as f:
@@ -331,16 +339,9 @@ def run_result(outdir, case):
                     break
     except OSError:
         pass
-    if rc is None:
-        status = 'not_run'
-    elif rc == '1':
-        status = 'bad_input'
-    elif rc in ('0', '2'):
-        status = (summ or {}).get('status') or ('no_convergence' if rc == '2' else 'no_summary')
-    else:
-        status = 'failed_exit_%s' % rc
-        if not err:
-            err = 'the program stopped with exit status %s (crash or signal?)' % rc
+    if status.startswith('failed_exit_') and not err:
+        err = ('the program stopped with exit status %s (crash or signal?)'
+               % status[len('failed_exit_'):])
     return status, summ, err
 
 
@@ -363,11 +364,12 @@ def cmd_collect(args):
         die('usage: sweep_tool.py collect OUTDIR')
     outdir = args[0]
     names, cases = read_cases(outdir)
+    statuses = read_statuses(outdir)
     header = ['case'] + names + RESULT_KEYS + ['status']
     rows, notes, not_run = [], [], []
     failed = 0
     for c in cases:
-        status, summ, err = run_result(outdir, c[0])
+        status, summ, err = run_result(outdir, c[0], statuses)
         vals = [fmt_num((summ or {}).get(k)) for k in RESULT_KEYS]
         rows.append([c[0]] + [table_value(v) for v in c[1:]] + vals + [status])
         if status == 'not_run':
@@ -492,6 +494,7 @@ def cmd_curves(args):
         die('usage: sweep_tool.py curves SWEEPDIR OUTDIR [--no-origin] [--lcid=N]')
     sweepdir, outdir = rest
     names, cases = read_cases(sweepdir)
+    statuses = read_statuses(sweepdir)
     if 'lock_depth' not in names:
         die('%s is not a sweep over lock_depth (swept: %s)' % (sweepdir, ', '.join(names) or 'nothing'))
     ilock = names.index('lock_depth')
@@ -513,7 +516,7 @@ def cmd_curves(args):
         rf, nf, used_peak, torn = [], [], [], []
         for c in groups[key]:
             depth = float(c[1 + ilock])
-            status, summ, _ = run_result(sweepdir, c[0])
+            status, summ, _ = run_result(sweepdir, c[0], statuses)
             if summ is None or status not in ('completed', 'localized'):
                 skipped.append('%s (lock_depth = %s): %s' % (c[0], c[1 + ilock], status))
                 continue

@@ -17,13 +17,16 @@
 #   c) sweep.sh on a 2x2 grid of a 10-element strip: four decks holding
 #      the right values (also in the program's resolved input), a
 #      four-row table; a sweep with friction=-1 lists that case as
-#      bad_input with the program's message, and exits 1
+#      bad_input with the program's message, and exits 1; a variable the
+#      base deck does not set (snapshot_every, from the program's
+#      --list-variables) is added to its group and read by the program
 #   d) sweep.sh --slurm: the array range matches the deck count, the
 #      script passes bash -n, one task run by hand gives that deck's
 #      summary, and --collect builds the table (not_run for the others)
 #   e) bead_curves.sh on a lock_depth sweep of a small bead A deck: both
 #      curves with N/mm headers and the LS-DYNA keyword file
-#   f) shellcheck (if installed) finds nothing in the batch scripts
+#   f) shellcheck (if installed) finds nothing in the batch scripts, the
+#      test scripts and scripts/lib.sh
 # Prints one line per check; exit status 0 if all pass, 1 if any fails,
 # 2 if the test cannot run.
 set -u
@@ -243,6 +246,17 @@ rc=$?
 check "an unknown variable is a usage error (exit 2, got $rc)" test "$rc" -eq 2
 check "... naming it" grep -q "unknown variable 'no_such_variable'" "$tmp/c3.err"
 
+# the variables come from the program (--list-variables): one the base deck
+# does not set is added to its group
+scripts/sweep.sh --bin "$prog" -o "$tmp/sweepnew" "$tmp/strip.nml" snapshot_every=0.1 \
+    >/dev/null 2>"$tmp/c4.err"
+rc=$?
+check "a variable the base deck does not set is swept (snapshot_every; exit 0, got $rc)" test "$rc" -eq 0
+check "... added to its group &control" \
+    grep -Pzq '&control\n[^/]*\n   snapshot_every = 0\.1\n/' "$tmp/sweepnew/decks/case_0000.nml"
+check "... and read by the program (SNAPSHOT_EVERY=0.1)" \
+    grep -q '^ *SNAPSHOT_EVERY= *0\.1000' "$tmp/sweepnew/runs/case_0000/run.log"
+
 # ---------------------------------------------------------------------------
 # d) sweep.sh --slurm
 # ---------------------------------------------------------------------------
@@ -302,7 +316,7 @@ check "LS-DYNA keyword file with two curves" \
 # ---------------------------------------------------------------------------
 if command -v shellcheck >/dev/null 2>&1; then
     echo "== f) shellcheck"
-    check "shellcheck: every script of scripts/ and tests/" shellcheck scripts/*.sh tests/*.sh
+    check "shellcheck: every script of scripts/, tests/ and tests/regression/" shellcheck scripts/*.sh tests/*.sh tests/regression/*.sh
 fi
 
 echo "scripts.sh: $checks checks, $failures failed"

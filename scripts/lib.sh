@@ -1,0 +1,203 @@
+# shellcheck shell=bash
+# lib.sh -- the shared part of the batch scripts (scripts/*.sh and
+# tests/regression/run.sh): messages and help, option checks, the build,
+# running one deck, a pool of runs, reading summary.txt and naming exit
+# statuses. Source it, do not run it:
+#
+#   # shellcheck source=scripts/lib.sh
+#   source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" || exit 2
+#
+# Sourcing sets root (the repository top) and me (the script's file name,
+# for messages). Every function is small and documented where it is
+# defined; the sourcing script owns the global variables named in each
+# function's comment.
+
+# shellcheck disable=SC2034 # root, me and the exit_* names are for the sourcing script
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd) || exit 2
+me=$(basename "${BASH_SOURCE[1]:-$0}")
+
+# The program's exit statuses (src/: 0 success, also after a localization;
+# 1 the deck was rejected; 2 no convergence)
+exit_ok=0
+exit_bad_input=1
+exit_no_convergence=2
+
+# The files a run writes into its output folder (with run.log and
+# exit_status, which run_deck adds); run_deck removes them before a run so
+# that a failed run cannot leave stale results behind.
+run_outputs=(lock.dat pull.dat strain_lock.dat strain_pull.dat tools_lock.dat tools_pull.dat
+    snapshots.dat summary.txt exit_status)
+
+# ---------------------------------------------------------------------------
+# Messages and options
+# ---------------------------------------------------------------------------
+
+# note MESSAGE...: "ME: MESSAGE" on stderr
+note() {
+    echo "$me: $*" >&2
+}
+
+# die MESSAGE...: "ME: MESSAGE" on stderr, then exit 2 (the scripts' status
+# for a usage, deck or build error)
+die() {
+    note "$@"
+    exit 2
+}
+
+# usage: print the calling script's help, its header comment from line 2
+# down to the line before the first 'set -'
+usage() {
+    sed -n '2,/^set -/p' "$0" | sed -e '$d' -e 's/^# \{0,1\}//'
+}
+
+# split_options ARGS...: the arguments in the array split_args, with every
+# --option=value before a '--' split into --option value
+split_options() {
+    split_args=()
+    while (($# > 0)); do
+        if [[ $1 == -- ]]; then
+            split_args+=("$@")
+            return 0
+        elif [[ $1 == --*=* ]]; then
+            split_args+=("${1%%=*}" "${1#*=}")
+        else
+            split_args+=("$1")
+        fi
+        shift
+    done
+}
+
+# need_value WHAT OPTION [VALUE...]: die "OPTION needs WHAT" unless the
+# option has a value after it (pass the parser's "$@")
+need_value() {
+    (($# >= 3)) || die "$2 needs $1"
+}
+
+# check_count OPTION VALUE: die unless VALUE is a positive integer
+check_count() {
+    [[ $2 =~ ^[1-9][0-9]*$ ]] || die "$1 needs a positive integer, not '$2'"
+}
+
+# ---------------------------------------------------------------------------
+# The program
+# ---------------------------------------------------------------------------
+
+# build_program [MAKE ARGUMENTS...]: make -s in the repository (output to
+# stderr); dies if the build fails
+build_program() {
+    note "make -s${*:+ $*}"
+    make -s -C "$root" "$@" >&2 || die "the build failed"
+}
+
+# find_program BIN BUILD: set bin to the program to run, as an absolute
+# path: BIN if given, else bin/drawbead of the repository, built first
+# when BUILD is 1; dies if it is not executable
+find_program() {
+    bin=$1
+    if [[ -z $bin ]]; then
+        bin=$root/bin/drawbead
+        if (($2)); then build_program all; fi
+    fi
+    [[ -x $bin ]] || die "no executable program '$bin' (build it with make)"
+    [[ $bin == /* ]] || bin=$PWD/$bin
+}
+
+# ---------------------------------------------------------------------------
+# Runs
+# ---------------------------------------------------------------------------
+
+# run_deck BIN DECK DIR: run BIN on DECK into DIR, one thread (the runs of
+# a batch share the machine), with stdout and stderr in DIR/run.log and
+# the exit status in DIR/exit_status; removes the outputs of an earlier
+# run first. Returns the program's exit status.
+run_deck() {
+    local bin=$1 deck=$2 dir=$3 rc f
+    mkdir -p "$dir" || return 1
+    for f in "${run_outputs[@]}"; do rm -f "${dir:?}/$f"; done
+    OMP_NUM_THREADS=1 "$bin" "$deck" --output "$dir" >"$dir/run.log" 2>&1
+    rc=$?
+    echo "$rc" >"$dir/exit_status"
+    return "$rc"
+}
+
+# run_pool JOBS ON_DONE: run_deck "$bin" pool_decks[i] pool_dirs[i] for
+# every i, at most JOBS at a time (globals bin, pool_decks, pool_dirs), and
+# call "ON_DONE i STATUS" in this shell as each run ends. Returns the
+# number of runs that exited non-zero (at most 255).
+pool_decks=()
+pool_dirs=()
+run_pool() {
+    # the locals are prefixed: ON_DONE sees them (bash scopes dynamically)
+    local pool_jobs=$1 pool_done=$2 pool_total=${#pool_decks[@]} pool_next=0 pool_failed=0
+    local pool_pid pool_rc pool_running
+    local -A pool_index=()
+    while ((pool_next < pool_total || ${#pool_index[@]} > 0)); do
+        while ((${#pool_index[@]} < pool_jobs && pool_next < pool_total)); do
+            run_deck "$bin" "${pool_decks[pool_next]}" "${pool_dirs[pool_next]}" &
+            pool_index[$!]=$pool_next
+            pool_next=$((pool_next + 1))
+        done
+        pool_running=" $(jobs -rp | tr '\n' ' ') "
+        for pool_pid in "${!pool_index[@]}"; do
+            [[ $pool_running == *" $pool_pid "* ]] && continue
+            wait "$pool_pid"
+            pool_rc=$?
+            ((pool_rc == 0)) || pool_failed=$((pool_failed + 1))
+            "$pool_done" "${pool_index[$pool_pid]}" "$pool_rc"
+            unset "pool_index[$pool_pid]"
+        done
+        ((${#pool_index[@]} > 0)) && sleep 0.05
+    done
+    return $((pool_failed > 255 ? 255 : pool_failed))
+}
+
+# ---------------------------------------------------------------------------
+# Results
+# ---------------------------------------------------------------------------
+
+# summary_value FILE KEY: the value of 'KEY = value' in FILE (a
+# summary.txt), blanks trimmed; prints nothing if FILE or KEY is missing
+summary_value() {
+    [[ -r $1 ]] || return 0
+    awk -v key="$2" '
+        /^#/ { next }
+        { k = $0; sub(/=.*/, "", k); gsub(/^[ \t]+|[ \t]+$/, "", k) }
+        k == key && index($0, "=") { v = substr($0, index($0, "=") + 1); gsub(/^[ \t]+|[ \t]+$/, "", v); print v; exit }
+    ' "$1"
+}
+
+# run_status DIR: the state of a run made by run_deck, one word: the
+# summary's status (completed, localized, ...) after exit 0 or 2,
+# no_convergence (exit 2 without a summary), no_summary, bad_input (exit
+# 1), not_run (no exit_status yet) or failed_exit_N (a crash or signal)
+run_status() {
+    local rc s
+    rc=$(cat "$1/exit_status" 2>/dev/null) || rc=''
+    case $rc in
+        "$exit_ok" | "$exit_no_convergence")
+            s=$(summary_value "$1/summary.txt" status)
+            if [[ -n $s ]]; then
+                echo "$s"
+            elif [[ $rc == "$exit_no_convergence" ]]; then
+                echo no_convergence
+            else
+                echo no_summary
+            fi
+            ;;
+        "$exit_bad_input") echo bad_input ;;
+        '') echo not_run ;;
+        *) echo "failed_exit_$rc" ;;
+    esac
+}
+
+# write_statuses SWEEPDIR: SWEEPDIR/status.tsv, one line "case<TAB>status"
+# (run_status of SWEEPDIR/runs/<case>) per deck of SWEEPDIR/decks.txt, for
+# scripts/sweep_tool.py; dies if there is no deck list
+write_statuses() {
+    local deck name
+    [[ -r $1/decks.txt ]] || die "no $1/decks.txt: not a sweep folder"
+    while read -r deck; do
+        name=$(basename "$deck" .nml)
+        printf '%s\t%s\n' "$name" "$(run_status "$1/runs/$name")"
+    done <"$1/decks.txt" >"$1/status.tsv" || die "cannot write $1/status.tsv"
+}
