@@ -1,0 +1,458 @@
+#!/usr/bin/env python3
+"""doc_tables.py -- the numbers of the documents, produced by the program.
+
+Usage:
+  scripts/doc_tables.py [--bin PATH] [-j N] NAME...     regenerate blocks in place
+  scripts/doc_tables.py [--bin PATH] [-j N] --check NAME...
+  scripts/doc_tables.py --check-links
+  scripts/doc_tables.py --list
+
+Every table of results in README.md and docs/*.md sits between the lines
+  <!-- BEGIN scripts/doc_tables.py NAME -->
+  <!-- END scripts/doc_tables.py NAME -->
+and is written by this script (NAME `all`: every block).  A block is
+produced by running bin/drawbead (or --bin PATH; $DRAWBEAD if set) on the
+decks of input/, or by running one of the study scripts (convergence.sh,
+bench.sh) and copying its output verbatim.  Run it from anywhere: paths
+are those of the repository holding this script.
+
+--check NAME...  regenerates the blocks without writing them and compares
+    them with the documents: text must be the same, and every number must
+    equal the program's value to the digits the document shows (so the
+    round-off of another compiler or of the checked build passes).  Exit 1
+    on a difference, listing it.  `bench` (timings) cannot be checked and
+    is skipped with a note.
+--check-links  checks that every relative link and image of README.md and
+    docs/*.md points at an existing file (and a `#anchor` into a markdown
+    file at one of its headings), that every block marker names a known
+    block and is closed, and that README.md is at most 10 KB.
+--list  prints the blocks, the files that hold them and what they run.
+
+Exit status: 0 success, 1 a check failed or a run failed, 2 usage error.
+"""
+
+import concurrent.futures
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DOCS = ["README.md"] + sorted(
+    os.path.join("docs", f) for f in os.listdir(os.path.join(ROOT, "docs")) if f.endswith(".md"))
+MARK = "scripts/doc_tables.py"
+README_LIMIT = 10240
+
+PAPER_DECKS = [
+    "fig5a_beadA_steel", "fig5b_beadA_brass", "fig6_beadB_steel",
+    "fig7a_beadA_brass_mu0", "fig7b_beadA_steel_mu0", "fig7c_beadB_steel_mu0",
+    "fig7d_beadA_steel_mu01", "fig9a_beadA_brass_free", "fig9b_beadA_steel_free_mu02",
+    "fig9c_beadA_steel_free", "fig9d_beadB_steel_free", "strip_tension",
+]
+STEP_DECKS = ["fig5a_beadA_steel", "fig6_beadB_steel", "fig7b_beadA_steel_mu0",
+              "fig7c_beadB_steel_mu0", "fig9c_beadA_steel_free", "fig9d_beadB_steel_free"]
+
+
+class Num:
+    """A number of a table: its value and the format it is shown with."""
+
+    def __init__(self, value, fmt):
+        self.value = value
+        self.fmt = fmt
+
+    def text(self, raw):
+        if self.value is None:
+            return "none"
+        return repr(self.value) if raw else format(self.value, self.fmt)
+
+
+def cell(x, raw):
+    return x.text(raw) if isinstance(x, Num) else str(x)
+
+
+def markdown_table(header, align, rows, raw):
+    """A markdown table; header and align are lists of str, rows of cells."""
+    lines = ["| " + " | ".join(header) + " |", "| " + " | ".join(align) + " |"]
+    for row in rows:
+        lines.append("| " + " | ".join(cell(x, raw) for x in row) + " |")
+    return "\n".join(lines)
+
+
+# ---------------------------------------------------------------------------
+# Running the program
+# ---------------------------------------------------------------------------
+
+def read_summary(path):
+    """summary.txt as a dict of strings."""
+    values = {}
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("#") or " = " not in line:
+                continue
+            key, value = line.rstrip("\n").split(" = ", 1)
+            values[key.strip()] = value.strip()
+    return values
+
+
+def real(summary, key):
+    value = summary.get(key, "none")
+    return None if value == "none" else float(value)
+
+
+def run_deck(program, deck_text_or_path, outdir, name):
+    """Run one deck (a path, or the text of a deck) into outdir/name;
+    return its summary and the exit status."""
+    run_dir = os.path.join(outdir, name)
+    if "\n" in deck_text_or_path:
+        deck = os.path.join(outdir, name + ".nml")
+        with open(deck, "w", encoding="utf-8") as f:
+            f.write(deck_text_or_path)
+    else:
+        deck = deck_text_or_path
+    with open(os.path.join(outdir, name + ".log"), "w", encoding="utf-8") as log:
+        status = subprocess.call([program, deck, "--output", run_dir], cwd=ROOT,
+                                 stdout=log, stderr=subprocess.STDOUT)
+    summary_path = os.path.join(run_dir, "summary.txt")
+    summary = read_summary(summary_path) if os.path.exists(summary_path) else {}
+    return summary, status
+
+
+def run_many(program, jobs, outdir, workers):
+    """jobs: list of (name, deck path or text); returns {name: summary}."""
+    results = {}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
+        futures = {pool.submit(run_deck, program, deck, outdir, name): name
+                   for name, deck in jobs}
+        for fut in concurrent.futures.as_completed(futures):
+            name = futures[fut]
+            summary, status = fut.result()
+            if status != 0 or not summary:
+                raise RuntimeError(f"run {name} exited with status {status} "
+                                   f"(log: {os.path.join(outdir, name + '.log')})")
+            results[name] = summary
+    return results
+
+
+def with_loading(deck_path, line):
+    """The text of a deck with one more line at the top of its &loading group."""
+    with open(os.path.join(ROOT, deck_path), encoding="utf-8") as f:
+        text = f.read()
+    new, n = re.subn(r"(?im)^&loading\s*$", "&loading\n   " + line, text, count=1)
+    if n != 1:
+        raise RuntimeError(f"{deck_path}: no &loading line to add {line!r} to")
+    return new
+
+
+def thickness_of(deck_path):
+    with open(os.path.join(ROOT, deck_path), encoding="utf-8") as f:
+        m = re.search(r"(?im)^\s*thickness\s*=\s*([0-9.eE+-]+)", f.read())
+    return float(m.group(1)) if m else 0.762
+
+
+# ---------------------------------------------------------------------------
+# The blocks.  Each generator returns a function raw -> text: raw=False is
+# the text of the document, raw=True the same with every number in full.
+# ---------------------------------------------------------------------------
+
+def gen_readme_example(ctx):
+    """README.md: the first example, fig5a, a few lines of its summary.txt."""
+    s = run_many(ctx.program, [("fig5a", "input/fig5a_beadA_steel.nml")], ctx.tmp, 1)["fig5a"]
+    shown = [("status", None), ("localization_phase", None),
+             ("delta_cr_over_h", ".4g"), ("s_star_over_h", ".4g"),
+             ("lock_force_over_Eh", ".4e"), ("peak_force_over_Eh", ".4e"),
+             ("max_thinning", ".3f"), ("energy_balance_error", ".1e")]
+
+    def text(raw):
+        lines = ["```", "$ cat out/fig5a_beadA_steel/summary.txt     # (an excerpt)",
+                 "# drawbead summary: Fig. 5a: bead A, mild steel (DQSK), clamped, mu = 0.1"]
+        for key, fmt in shown:
+            value = s[key] if fmt is None else Num(real(s, key), fmt).text(raw)
+            lines.append(f"{key} = {value}")
+        lines.append("```")
+        return "\n".join(lines)
+    return text
+
+
+def gen_paper_table(ctx):
+    """docs/validation.md: every deck of the paper (and the strip), as shipped."""
+    jobs = [(d, f"input/{d}.nml") for d in PAPER_DECKS]
+    res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    rows = []
+    for d in PAPER_DECKS:
+        s = res[d]
+        rows.append([d, s["status"], Num(real(s, "delta_cr_over_h"), ".3f"),
+                     Num(real(s, "s_star_over_h"), ".2f"),
+                     Num(real(s, "delta_cr_nonlocal_over_h"), ".3f"),
+                     Num(real(s, "lock_force_over_Eh"), ".4e"),
+                     Num(real(s, "peak_force_over_Eh"), ".4e"),
+                     Num(real(s, "steady_force_over_Eh"), ".4e"),
+                     Num(real(s, "steady_reached_at_delta_over_h"), ".2f"),
+                     Num(real(s, "max_thinning"), ".3f"),
+                     Num(real(s, "energy_balance_error"), ".1e")])
+    header = ["deck", "status", "Δcr/h", "s*/h", "Δcr/h (averaged)", "F/(E h) at lock",
+              "peak N/(E h)", "steady N/(E h)", "steady from Δ/h", "max thinning",
+              "energy balance"]
+    align = ["---", "---"] + ["---:"] * 9
+    return lambda raw: markdown_table(header, align, rows, raw)
+
+
+def gen_step_study(ctx):
+    """docs/validation.md: the same mesh, the largest increment halved twice."""
+    factors = [1.0, 0.5, 0.25]
+    jobs = []
+    for d in STEP_DECKS:
+        path = f"input/{d}.nml"
+        h = thickness_of(path)
+        for f in factors:
+            jobs.append((f"{d}_{f}", with_loading(path, f"max_increment = {0.1 * h * f:.6g}")))
+    res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    keys = [("lock_force_over_Eh", ".4e"), ("peak_force_over_Eh", ".4e"),
+            ("steady_force_over_Eh", ".4e"), ("delta_cr_over_h", ".3f")]
+    rows = []
+    for d in STEP_DECKS:
+        base = res[f"{d}_1.0"]
+        for f in factors:
+            s = res[f"{d}_{f}"]
+            row = [d if f == 1.0 else "", f"{0.1 * f:g}h", s["increments"]]
+            row += [Num(real(s, k), fmt) for k, fmt in keys]
+            for k, _ in keys[:3]:
+                a, b = real(base, k), real(s, k)
+                row.append(Num(None if f == 1.0 or a is None or b is None
+                               else 100.0 * (b - a) / a, "+.2f"))
+            rows.append(row)
+    header = ["deck", "max_increment", "increments", "F/(E h) at lock", "peak N/(E h)",
+              "steady N/(E h)", "Δcr/h", "F change %", "peak N change %", "steady N change %"]
+    align = ["---", "---:"] + ["---:"] * 8
+    return lambda raw: markdown_table(header, align, rows, raw)
+
+
+def script_output(ctx, args):
+    """The stdout of one of the study scripts, run from the repository."""
+    env = dict(os.environ)
+    proc = subprocess.run(args, cwd=ROOT, env=env, stdout=subprocess.PIPE, text=True, check=False)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(args)} exited with status {proc.returncode}")
+    return proc.stdout.rstrip("\n")
+
+
+def gen_convergence(ctx):
+    """docs/validation.md: scripts/convergence.sh on fig5a and fig9c, verbatim."""
+    out = script_output(ctx, ["scripts/convergence.sh", "-o", os.path.join(ctx.tmp, "conv"),
+                              "input/fig5a_beadA_steel.nml", "input/fig9c_beadA_steel_free.nml"])
+    text = "```\n$ scripts/convergence.sh input/fig5a_beadA_steel.nml " \
+           "input/fig9c_beadA_steel_free.nml\n" + out + "\n```"
+    return lambda raw: text
+
+
+def gen_convergence_shipped(ctx):
+    """docs/validation.md: the free-edge bead A mesh as shipped (96), doubled twice."""
+    out = script_output(ctx, ["scripts/convergence.sh", "-o", os.path.join(ctx.tmp, "conv96"),
+                              "-n", "96 192 384", "input/fig9c_beadA_steel_free.nml"])
+    text = '```\n$ scripts/convergence.sh -n "96 192 384" ' \
+           "input/fig9c_beadA_steel_free.nml\n" + out + "\n```"
+    return lambda raw: text
+
+
+def gen_bench(ctx):
+    """docs/performance.md: scripts/bench.sh --markdown, verbatim."""
+    out = script_output(ctx, ["scripts/bench.sh", "--markdown", "-n", "5",
+                              "--keep", os.path.join(ctx.tmp, "bench")])
+    return lambda raw: out
+
+
+GENERATORS = {
+    "readme_example": ("README.md", gen_readme_example, "bin/drawbead on input/fig5a_beadA_steel.nml"),
+    "paper_table": ("docs/validation.md", gen_paper_table, "every input/fig*.nml and strip_tension.nml"),
+    "step_study": ("docs/validation.md", gen_step_study, "six paper decks at max_increment 0.1h, 0.05h, 0.025h"),
+    "convergence": ("docs/validation.md", gen_convergence, "scripts/convergence.sh on fig5a, fig9c"),
+    "convergence_shipped": ("docs/validation.md", gen_convergence_shipped,
+                            "scripts/convergence.sh -n \"96 192 384\" on fig9c"),
+    "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5 (not checkable)"),
+}
+UNCHECKABLE = {"bench"}
+
+
+# ---------------------------------------------------------------------------
+# Blocks in the documents
+# ---------------------------------------------------------------------------
+
+def block_span(text, name):
+    """(start, end) of the body of block name in text, or None."""
+    begin = f"<!-- BEGIN {MARK} {name} -->\n"
+    end = f"<!-- END {MARK} {name} -->"
+    i = text.find(begin)
+    if i < 0:
+        return None
+    j = text.find(end, i)
+    if j < 0:
+        return None
+    return i + len(begin), j
+
+
+NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+
+
+def tokens(text):
+    return [t for t in re.split(r"[\s|`]+", text) if t]
+
+
+def shown_step(token):
+    """Half a unit in the last digit a number token shows."""
+    mant, _, exp = token.lower().lstrip("+-").partition("e")
+    decimals = len(mant.split(".", 1)[1]) if "." in mant else 0
+    return 0.5 * 10.0 ** (-decimals + (int(exp) if exp else 0))
+
+
+def compare(doc, fresh_shown, fresh_raw):
+    """Differences between a document block and the regenerated one."""
+    a, b, c = tokens(doc), tokens(fresh_shown), tokens(fresh_raw)
+    problems = []
+    if len(a) != len(b) or len(b) != len(c):
+        return [f"the block has {len(a)} fields, the program's {len(b)}"]
+    for t_doc, t_new, t_raw in zip(a, b, c):
+        core_doc, core_raw = t_doc.rstrip("%"), t_raw.rstrip("%")
+        if NUMBER.match(core_doc) and NUMBER.match(core_raw):
+            # half a unit of the last digit shown against the full value; a
+            # whole unit against a script's own rounded output
+            value, step = float(core_raw), shown_step(core_doc)
+            if t_new == t_raw:
+                step *= 2.0
+            if not math.isfinite(value) or abs(float(core_doc) - value) > step * (1 + 1e-9) + 1e-300:
+                problems.append(f"{t_doc} in the document, the program gives {t_new} ({t_raw})")
+        elif t_doc != t_new:
+            problems.append(f"'{t_doc}' in the document, '{t_new}' from the program")
+    return problems
+
+
+def read_doc(path):
+    with open(os.path.join(ROOT, path), encoding="utf-8") as f:
+        return f.read()
+
+
+def check_links():
+    """Links, images, block markers and the README's size."""
+    problems = []
+    headings = {}
+    for doc in DOCS:
+        slugs = set()
+        in_code = False
+        for line in read_doc(doc).splitlines():
+            if line.startswith("```"):
+                in_code = not in_code
+            if not in_code and line.startswith("#"):
+                title = line.lstrip("#").strip().lower()
+                title = re.sub(r"[^\w\- ]", "", title.replace("`", ""))
+                slugs.add(title.replace(" ", "-"))
+        headings[doc] = slugs
+    for doc in DOCS:
+        text = read_doc(doc)
+        body = re.sub(r"```.*?```", "", text, flags=re.S)
+        for target in re.findall(r"\]\(([^)\s]+)\)", body):
+            if re.match(r"^[a-z]+:", target):
+                continue
+            path, _, anchor = target.partition("#")
+            full = os.path.normpath(os.path.join(os.path.dirname(doc), path)) if path else doc
+            if not os.path.exists(os.path.join(ROOT, full)):
+                problems.append(f"{doc}: link to {target}: no such file {full}")
+            elif anchor and full.endswith(".md") and anchor not in headings.get(full, set()):
+                problems.append(f"{doc}: link to {target}: no heading #{anchor} in {full}")
+        for name in re.findall(rf"<!-- BEGIN {re.escape(MARK)} (\S+) -->", text):
+            if name not in GENERATORS:
+                problems.append(f"{doc}: block {name}: no such block in {MARK}")
+            elif GENERATORS[name][0] != doc:
+                problems.append(f"{doc}: block {name} belongs in {GENERATORS[name][0]}")
+            elif block_span(text, name) is None:
+                problems.append(f"{doc}: block {name} is not closed")
+    size = os.path.getsize(os.path.join(ROOT, "README.md"))
+    if size > README_LIMIT:
+        problems.append(f"README.md: {size} bytes, more than {README_LIMIT}")
+    return problems
+
+
+class Context:
+    def __init__(self, program, workers, tmp):
+        self.program, self.workers, self.tmp = program, workers, tmp
+
+
+def main(argv):
+    program = os.environ.get("DRAWBEAD") or os.path.join(ROOT, "bin", "drawbead")
+    workers = 2
+    check = False
+    names = []
+    args = list(argv)
+    while args:
+        a = args.pop(0)
+        if a in ("-h", "--help"):
+            print(__doc__)
+            return 0
+        if a == "--bin" and args:
+            program = os.path.abspath(args.pop(0))
+        elif a == "-j" and args:
+            workers = int(args.pop(0))
+        elif a == "--check":
+            check = True
+        elif a == "--check-links":
+            problems = check_links()
+            for p in problems:
+                print(f"doc_tables.py: {p}", file=sys.stderr)
+            return 1 if problems else 0
+        elif a == "--list":
+            for name, (doc, _, what) in GENERATORS.items():
+                print(f"{name:20s} {doc:22s} {what}")
+            return 0
+        elif a.startswith("-"):
+            print(f"doc_tables.py: unknown option {a} (see --help)", file=sys.stderr)
+            return 2
+        else:
+            names.append(a)
+    if names == ["all"]:
+        names = list(GENERATORS)
+    unknown = [n for n in names if n not in GENERATORS]
+    if not names or unknown:
+        print(f"doc_tables.py: give block names ({', '.join(GENERATORS)}) or all"
+              + (f"; unknown: {' '.join(unknown)}" if unknown else ""), file=sys.stderr)
+        return 2
+    if not os.access(program, os.X_OK):
+        print(f"doc_tables.py: {program} is not an executable program (make first)",
+              file=sys.stderr)
+        return 2
+
+    failed = False
+    with tempfile.TemporaryDirectory(prefix="doc_tables.") as tmp:
+        ctx = Context(program, workers, tmp)
+        for name in names:
+            doc, gen, _ = GENERATORS[name]
+            if check and name in UNCHECKABLE:
+                print(f"skip: {name} (timings: regenerate with scripts/doc_tables.py {name})")
+                continue
+            text = read_doc(doc)
+            span = block_span(text, name)
+            if span is None:
+                print(f"doc_tables.py: {doc} has no block {name}", file=sys.stderr)
+                failed = True
+                continue
+            try:
+                render = gen(ctx)
+            except RuntimeError as err:
+                print(f"doc_tables.py: {name}: {err}", file=sys.stderr)
+                failed = True
+                continue
+            shown = render(False)
+            if check:
+                problems = compare(text[span[0]:span[1]], shown, render(True))
+                for p in problems:
+                    print(f"doc_tables.py: {doc}, block {name}: {p}", file=sys.stderr)
+                print(f"{'FAILED' if problems else 'ok'}: {name} ({doc})")
+                failed = failed or bool(problems)
+            else:
+                text = text[:span[0]] + shown + "\n" + text[span[1]:]
+                with open(os.path.join(ROOT, doc), "w", encoding="utf-8") as f:
+                    f.write(text)
+                print(f"written: {name} ({doc})")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
