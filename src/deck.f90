@@ -286,7 +286,15 @@ contains
                       lo=0.0_dp, lo_open=.true.)
       call check_real(errs, at(p, 'tools', 'contact_smoothing'), d%contact_smoothing, lo=0.0_dp)
 
+      if (d%left_edge == 'free' .and. d%bead == 'none') &
+         call fail(errs, at(p, 'sheet', 'left_edge'), "'free' needs tools (bead /= 'none'): "// &
+                   'without them nothing holds the sheet and pulling only translates it')
+
       ! &loading
+      if (d%bead == 'none' .and. ieee_is_finite(d%lock_depth)) then
+         if (d%lock_depth > 0.0_dp) call fail(errs, at(p, 'loading', 'lock_depth'), &
+            "is given with bead = 'none': there are no tools to lock (got "//num(d%lock_depth)//')')
+      end if
       if (is_unset(d%lock_depth)) then
          call fail(errs, at(p, 'loading', 'lock_depth'), 'must be given with bead = ''profile'''// &
                    ' (the full-lock depth of the profiles, mm)')

@@ -66,6 +66,9 @@ contains
          return
       end if
       call scan_groups(text, path, group_names, found, errs)
+      if (.not. any(found%present)) call add_error(errs, "deck '"//trim(path)// &
+         "': no namelist group of the program (&control, &sheet, &material, &tools, &loading):"// &
+         ' not a drawbead deck')
 
       msg = ''
       open (newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=msg)
@@ -88,7 +91,7 @@ contains
 
    !> echo_deck -- write the resolved input as namelist groups.
    !>
-   !> The output starts with a `# resolved input` line and is itself a valid
+   !> The output starts with a `! resolved input` line and is itself a valid
    !> deck (gfortran writes the names in upper case; reading is case-blind).
    !>
    !> d     [in] a deck, normally as returned by read_deck.
@@ -103,8 +106,8 @@ contains
       integer :: g, ios
 
       work = d
-      write (unit, '(a)') '# resolved input'
-      if (len_trim(d%deck_file) > 0) write (unit, '(a)') "# deck '"//trim(d%deck_file)//"'"
+      write (unit, '(a)') '! resolved input'
+      if (len_trim(d%deck_file) > 0) write (unit, '(a)') "! deck '"//trim(d%deck_file)//"'"
       do g = 1, size(group_names)
          msg = ''
          call group_io(trim(group_names(g)), work, act_write, 0, '', ios, msg, lines)
@@ -484,6 +487,7 @@ contains
       integer :: ios, n_before
 
       msg = ''
+      if (gt%present) call check_repeated(group, gt%body, path, errs)
       rewind (unit)
       call group_io(group, d, act_read_unit, unit, '', ios, msg, lines)
       if (ios == 0) return
@@ -589,4 +593,48 @@ contains
                         clip(value)//" ("//why//")")
       end do
    end subroutine diagnose_group
+   !> check_repeated -- a variable set twice in a group is an error (a
+   !> namelist read would silently keep the last value).  Names are
+   !> compared in lower case with their subscripts, so x(1) and x(2) differ.
+   !>
+   !> group  [in]     group name, lower case.
+   !> body   [in]     the group's text without '&group' and '/'.
+   !> path   [in]     deck name, for messages.
+   !> errs   [in,out] one error per repeated variable.
+   subroutine check_repeated(group, body, path, errs)
+      character(len=*), intent(in) :: group, body, path
+      type(error_list), intent(inout) :: errs
+
+      integer, allocatable :: starts(:), eqs(:)
+      integer :: k, j
+      character(len=:), allocatable :: name
+
+      call split_assignments(body, starts, eqs)
+      do k = 2, size(starts)
+         name = assigned_name(k)
+         if (len(name) == 0) cycle
+         do j = 1, k - 1
+            if (assigned_name(j) == name) then
+               call add_error(errs, "deck '"//trim(path)//"', group &"//group//', variable '// &
+                              name//': set more than once (each variable may be given once)')
+               exit
+            end if
+         end do
+      end do
+
+   contains
+
+      !> the name (with subscripts, blanks removed, lower case) of assignment i
+      function assigned_name(i) result(r)
+         integer, intent(in) :: i
+         character(len=:), allocatable :: r
+         integer :: c
+         r = ''
+         do c = starts(i), eqs(i) - 1
+            if (body(c:c) /= ' ') r = r//body(c:c)
+         end do
+         r = lower(r)
+      end function assigned_name
+   end subroutine check_repeated
+
 end module deck_reader

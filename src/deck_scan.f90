@@ -9,7 +9,7 @@
 !> '!' comments are honoured and an unquoted '/' ends the group.
 module deck_scan
    use errors, only: error_list, add_error
-   use text, only: lower
+   use text, only: lower, itoa
    implicit none
    private
    public :: group_text, scan_groups, split_assignments, clip, strip_separators, is_letter
@@ -26,17 +26,19 @@ contains
 
    !> scan_groups -- find the text of each known group in a deck.
    !>
-   !> Outside groups, '!' starts a comment and anything but '&name' is
-   !> skipped. Inside a group, quotes (' or ", doubled to escape) and '!'
-   !> comments are honoured and an unquoted '/' ends the group. Line ends,
-   !> tabs and comments become blanks in the body.
+   !> Outside groups, '!' starts a comment, '&name' opens a group and
+   !> anything else but blanks is stray text, reported with its line (the
+   !> first three lines of it, then a count). Inside a group, quotes (' or
+   !> ", doubled to escape) and '!' comments are honoured and an unquoted
+   !> '/' ends the group. Line ends, tabs and comments become blanks in the
+   !> body.
    !>
    !> text   [in]     the whole deck.
    !> path   [in]     deck name, for messages.
    !> names  [in]     the known groups, lower case, without '&'.
    !> found  [out]    per entry of names: present, terminated, body
    !>                 (of the first occurrence).
-   !> errs   [in,out] unknown and repeated groups are appended.
+   !> errs   [in,out] unknown and repeated groups and stray text are appended.
    subroutine scan_groups(text, path, names, found, errs)
       character(len=*), intent(in) :: text
       character(len=*), intent(in) :: path
@@ -47,7 +49,7 @@ contains
       character(len=:), allocatable :: body, name
       character(len=1) :: c, quote
       logical :: in_group
-      integer :: i, j, n, g, current
+      integer :: i, j, n, g, current, nb, line, stray
 
       n = len(text)
       i = 1
@@ -55,12 +57,26 @@ contains
       in_group = .false.
       current = 0
       quote = ' '
-      body = ''
+      ! the body grows in a buffer as long as the deck (no copy per character)
+      allocate (character(len=n) :: body)
+      nb = 0
+      line = 1
+      stray = 0
       do while (i <= n)
          c = text(i:i)
+         if (c == achar(10)) line = line + 1
          if (.not. in_group) then
             if (c == '!') then
                i = end_of_line(text, i)
+               cycle
+            else if (c /= '&' .and. c /= ' ' .and. iachar(c) >= 32) then
+               stray = stray + 1
+               j = end_of_line(text, i)
+               if (stray <= 3) call add_error(errs, "deck '"//trim(path)//"', line "//itoa(line)// &
+                                              ": text outside any namelist group: '"// &
+                                              printable(clip(text(i:j - 1)))//"'")
+               i = j
+               cycle
             else if (c == '&') then
                j = i + 1
                do while (j <= n)
@@ -86,7 +102,7 @@ contains
                   end if
                   in_group = .true.
                   quote = ' '
-                  body = ''
+                  nb = 0
                end if
                i = j
                cycle
@@ -98,23 +114,27 @@ contains
                quote = c
             else if (c == '!') then
                i = end_of_line(text, i)
-               body = body//' '
+               nb = nb + 1
+               body(nb:nb) = ' '
                cycle
             else if (c == '/') then
                if (current > 0) then
                   found(current)%terminated = .true.
-                  found(current)%body = body
+                  found(current)%body = body(1:nb)
                end if
                in_group = .false.
                i = i + 1
                cycle
             end if
             if (iachar(c) < 32) c = ' '
-            body = body//c
+            nb = nb + 1
+            body(nb:nb) = c
          end if
          i = i + 1
       end do
-      if (in_group .and. current > 0) found(current)%body = body
+      if (stray > 3) call add_error(errs, "deck '"//trim(path)//"': "//itoa(stray - 3)// &
+                                    ' more lines of text outside any namelist group')
+      if (in_group .and. current > 0) found(current)%body = body(1:nb)
       do g = 1, size(found)
          if (.not. allocated(found(g)%body)) found(g)%body = ''
       end do
@@ -227,6 +247,20 @@ contains
       yes = is_letter(c) .or. (c >= '0' .and. c <= '9') .or. c == '_'
    end function is_name_char
 
+
+   !> printable -- text with every byte outside ' ' .. '~' shown as '?'
+   !> (a binary file quoted in a message).
+   pure function printable(s) result(r)
+      character(len=*), intent(in) :: s      !< [in] any text
+      character(len=len(s)) :: r
+
+      integer :: i
+
+      r = s
+      do i = 1, len(s)
+         if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) > 126) r(i:i) = '?'
+      end do
+   end function printable
 
    !> is_letter -- .true. for A-Z or a-z.
    pure function is_letter(c) result(yes)

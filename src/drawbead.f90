@@ -33,11 +33,12 @@ program drawbead
    type(run_record) :: rec
    character(len=:), allocatable :: path, out_override
    character(len=300) :: errmsg
-   character(len=256) :: iomsg
+   character(len=:), allocatable :: iomsg
    integer :: ios
    real(dp) :: t_start, t_end
 
    call parse_command_line(path, out_override)
+   call install_stop_handlers()
 
    ! set-up: every error of the deck and of the files it names, together
    call read_deck(path, d, errs)
@@ -65,7 +66,6 @@ program drawbead
                        'variable output_dir: '//trim(errmsg))
       call finish('bad input', exit_input)
    end if
-   call install_stop_handlers()
 
    if (m%has_tools .and. m%lock_depth > 0.0_dp) then
       call run_phase(m, ctl, s, 'lock', 0.0_dp, m%lock_depth, out, rec)
@@ -86,7 +86,7 @@ program drawbead
    call write_summary(out%dir//'/summary.txt', m, s, ctl, rec, t_end - t_start, ios, iomsg)
    if (ios /= 0 .and. rec%status /= run_write_failed) then
       rec%status = run_write_failed
-      rec%message = 'cannot write '//out%dir//'/summary.txt: '//trim(iomsg)
+      rec%message = 'cannot write '//iomsg
    end if
    select case (rec%status)
    case (run_ok)

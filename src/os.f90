@@ -1,28 +1,71 @@
 !> os -- what the program asks of the operating system, through C
 !> interoperability and without a shell: creating the output directory
-!> (a path is taken literally, never handed to a shell), the text of errno,
-!> and the SIGTERM/SIGINT handler that asks the run to stop at the next
-!> converged increment.
+!> (a path is taken literally, never handed to a shell), the result files
+!> written by the system calls creat/write/pwrite/close/unlink, the text
+!> of errno, and the SIGTERM/SIGINT handler that asks the run to stop at
+!> the next converged increment.
+!>
+!> Why result files do not use Fortran I/O: gfortran 12 reports success
+!> (iostat = 0) from a FLUSH or CLOSE whose write failed (ENOSPC on a full
+!> disk, EFBIG past a size limit; checked with strace), so a run on a full
+!> disk would end with truncated files and exit 0.  write(2) returns the
+!> error at once.
 !>
 !> The one piece of global mutable state in the program lives here: the
 !> flag the signal handler sets (a handler can reach nothing else).  It is
 !> only set by the handler and read by stop_requested.
 module os
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_ptr, c_funptr, &
-      c_funloc, c_associated, c_f_pointer, c_size_t
+      c_funloc, c_associated, c_f_pointer, c_size_t, c_long
+   use text, only: itoa
    implicit none
    private
    public :: make_directory, install_stop_handlers, stop_requested, signal_name
+   public :: file_create, file_write, file_write_at, file_close, file_remove
 
    !> POSIX signal numbers (the same on every Linux architecture)
-   integer(c_int), parameter :: sigint = 2, sigterm = 15
+   integer(c_int), parameter :: sigint = 2, sigterm = 15, sigxfsz = 25
    !> errno of an existing path
    integer(c_int), parameter :: eexist = 17
 
    !> the signal that asked the run to stop (0: none); set by on_signal
    integer(c_int), volatile, save :: requested = 0
 
+   !> errno of an interrupted system call (retried)
+   integer(c_int), parameter :: eintr = 4
+
    interface
+      function c_creat(path, mode) bind(C, name='creat') result(fd)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), value :: mode
+         integer(c_int) :: fd
+      end function c_creat
+      function c_write(fd, buf, count) bind(C, name='write') result(n)
+         import :: c_int, c_char, c_size_t, c_long
+         integer(c_int), value :: fd
+         character(kind=c_char), intent(in) :: buf(*)
+         integer(c_size_t), value :: count
+         integer(c_long) :: n
+      end function c_write
+      function c_pwrite(fd, buf, count, offset) bind(C, name='pwrite') result(n)
+         import :: c_int, c_char, c_size_t, c_long
+         integer(c_int), value :: fd
+         character(kind=c_char), intent(in) :: buf(*)
+         integer(c_size_t), value :: count
+         integer(c_long), value :: offset
+         integer(c_long) :: n
+      end function c_pwrite
+      function c_close(fd) bind(C, name='close') result(rc)
+         import :: c_int
+         integer(c_int), value :: fd
+         integer(c_int) :: rc
+      end function c_close
+      function c_unlink(path) bind(C, name='unlink') result(rc)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int) :: rc
+      end function c_unlink
       function c_mkdir(path, mode) bind(C, name='mkdir') result(rc)
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -89,6 +132,121 @@ contains
       if (stat /= 0) msg = errno_text(stat)
    end subroutine make_directory
 
+   !> FILE_CREATE: create (or truncate) a file for writing, mode 0666 less
+   !> the umask.
+   !>  path  [in]  the file
+   !>  fd    [out] its descriptor, -1 on failure
+   !>  stat  [out] 0, or errno
+   !>  msg   [out] the system's reason when stat /= 0
+   subroutine file_create(path, fd, stat, msg)
+      character(len=*), intent(in) :: path
+      integer, intent(out) :: fd, stat
+      character(len=:), allocatable, intent(out) :: msg
+      msg = ''
+      stat = 0
+      fd = int(c_creat(trim(path)//c_null_char, int(o'666', c_int)))
+      if (fd < 0) then
+         stat = errno()
+         msg = errno_text(stat)
+         fd = -1
+      end if
+   end subroutine file_create
+
+   !> FILE_WRITE: append text to an open file, all of it (a short write is
+   !> continued, an interrupted one retried).
+   !>  fd    [in]  descriptor from file_create
+   !>  text  [in]  the bytes (lines end with achar(10))
+   !>  stat  [out] 0, or errno
+   !>  msg   [out] the system's reason when stat /= 0
+   subroutine file_write(fd, text, stat, msg)
+      integer, intent(in) :: fd
+      character(len=*), intent(in) :: text
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: msg
+      integer :: done
+      integer(c_long) :: n
+      msg = ''
+      stat = 0
+      done = 0
+      do while (done < len(text))
+         n = c_write(int(fd, c_int), text(done + 1:), int(len(text) - done, c_size_t))
+         if (n < 0) then
+            stat = errno()
+            if (stat == eintr) cycle
+            msg = errno_text(stat)
+            return
+         end if
+         done = done + int(n)
+      end do
+   end subroutine file_write
+
+   !> FILE_WRITE_AT: write text at a byte offset of an open file (pwrite),
+   !> without moving its end: a record rewritten in place.
+   !>  fd      [in]  descriptor
+   !>  text    [in]  the bytes
+   !>  offset  [in]  where, in bytes from the start
+   !>  stat    [out] 0, or errno
+   !>  msg     [out] the system's reason when stat /= 0
+   subroutine file_write_at(fd, text, offset, stat, msg)
+      integer, intent(in) :: fd, offset
+      character(len=*), intent(in) :: text
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: msg
+      integer :: done
+      integer(c_long) :: n
+      msg = ''
+      stat = 0
+      done = 0
+      do while (done < len(text))
+         n = c_pwrite(int(fd, c_int), text(done + 1:), int(len(text) - done, c_size_t), &
+                      int(offset + done, c_long))
+         if (n < 0) then
+            stat = errno()
+            if (stat == eintr) cycle
+            msg = errno_text(stat)
+            return
+         end if
+         done = done + int(n)
+      end do
+   end subroutine file_write_at
+
+   !> FILE_CLOSE: close a descriptor (its data is then with the system).
+   !>  fd    [in]  descriptor
+   !>  stat  [out] 0, or errno
+   !>  msg   [out] the system's reason when stat /= 0
+   subroutine file_close(fd, stat, msg)
+      integer, intent(in) :: fd
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: msg
+      msg = ''
+      stat = 0
+      if (c_close(int(fd, c_int)) /= 0) then
+         stat = errno()
+         msg = errno_text(stat)
+      end if
+   end subroutine file_close
+
+   !> FILE_REMOVE: delete a file (unlink); a missing one is no error.
+   !>  path  [in]  the file
+   !>  stat  [out] 0, or errno
+   !>  msg   [out] the system's reason when stat /= 0
+   subroutine file_remove(path, stat, msg)
+      character(len=*), intent(in) :: path
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: msg
+      integer, parameter :: enoent = 2
+      msg = ''
+      stat = 0
+      if (c_unlink(trim(path)//c_null_char) /= 0) then
+         stat = errno()
+         if (stat == enoent) then
+            stat = 0
+         else
+            msg = errno_text(stat)
+         end if
+      end if
+   end subroutine file_remove
+
    !> MAKE_ONE: mkdir of one path, mode 0777 (less the umask).
    !>  path  [in]  the directory
    !>  stat  [out] 0, or errno
@@ -116,8 +274,10 @@ contains
       character(kind=c_char), pointer :: chars(:)
       integer :: i, n
       p = c_strerror(int(e, c_int))
-      text = 'errno '
-      if (.not. c_associated(p)) return
+      if (.not. c_associated(p)) then
+         text = 'errno '//itoa(e)
+         return
+      end if
       n = int(c_strlen(p))
       call c_f_pointer(p, chars, [n])
       allocate (character(len=n) :: text)
@@ -127,12 +287,23 @@ contains
    end function errno_text
 
    !> INSTALL_STOP_HANDLERS: SIGTERM and SIGINT (Ctrl-C) ask the run to stop
-   !> at the next converged increment instead of killing it.
+   !> at the next converged increment instead of killing it.  SIGXFSZ (a
+   !> file grown past the size limit, ulimit -f) is caught and ignored, so
+   !> that the write fails with EFBIG and is reported like a full disk
+   !> (the run-time library would otherwise die with a backtrace).
    subroutine install_stop_handlers()
       type(c_funptr) :: old
       old = c_signal(sigterm, c_funloc(on_signal))
       old = c_signal(sigint, c_funloc(on_signal))
+      old = c_signal(sigxfsz, c_funloc(on_file_size))
    end subroutine install_stop_handlers
+
+   !> ON_FILE_SIZE: the SIGXFSZ handler: nothing (the write reports EFBIG).
+   subroutine on_file_size(signum) bind(C)
+      integer(c_int), value :: signum
+      associate (unused => signum)
+      end associate
+   end subroutine on_file_size
 
    !> ON_SIGNAL: the handler: record the signal, nothing else.
    subroutine on_signal(signum) bind(C)

@@ -1,17 +1,18 @@
 !> output -- the column text files of a run.
 !>
 !> Every file starts with '#' lines naming each column and its unit; data are
-!> written with (*(1x,es24.16e3)) so real64 round-trips, and flushed each
-!> increment so a run that stops early keeps what it computed.
+!> written with (*(1x,es24.16e3)) so real64 round-trips, and each row goes
+!> to the system at once, so a run that stops early keeps what it computed.
 !>
 !> The output directory belongs to the run: open_outputs creates it (by
 !> the mkdir system call, never a shell), removes the result files an
 !> earlier run left there (only the names in result_files) and starts
 !> summary.txt with status = running, which write_progress keeps true
 !> increment by increment until the summary module writes the final one.
-!> Every write, flush and close checks its status: the first failure is
-!> kept in output_files (failed, failure: the file and the system's
-!> reason) and the increment loop stops the run on it.
+!> The files are written through module os (write(2)), because gfortran's
+!> own I/O does not report a failed flush: the first failure of any write
+!> or close is kept in output_files (failed, failure: the file and the
+!> system's reason) and the increment loop stops the run on it.
 module output
    use kinds, only: dp
    use hermite, only: n_gauss, gauss_xi, hermite_shape
@@ -20,14 +21,15 @@ module output
    use section, only: ih_strain, ih_statev
    use model, only: model_type, state_type, gauss_position
    use tools, only: tool_sample
-   use os, only: make_directory
+   use os, only: make_directory, file_create, file_write, file_write_at, file_close, file_remove
    implicit none
    private
-   public :: output_files, open_outputs, write_row, write_strains, &
-             close_outputs, fmt_row, write_tools, open_snapshots, write_snapshot, write_progress, &
-             result_files, check_io
+   public :: output_files, open_outputs, write_row, write_strains, close_outputs, fmt_row, &
+             write_tools, open_snapshots, write_snapshot, write_progress, result_files, &
+             write_text_file
 
    character(len=*), parameter :: fmt_row = '(*(1x,es24.16e3))'
+   character(len=1), parameter :: nl = achar(10)
 
    !> Every file a run writes in its output directory (removed before the
    !> first increment, so no result of an earlier run is left beside this one's).
@@ -35,13 +37,17 @@ module output
       'summary.txt', 'lock.dat', 'pull.dat', 'strain_lock.dat', 'strain_pull.dat', &
       'strain_localization.dat', 'tools_lock.dat', 'tools_pull.dat', 'snapshots.dat']
 
-   !> Units of the files kept open through a run, and the first failed write.
+   !> One file of the run held open: its descriptor (-1: not open) and name.
+   type :: open_file
+      integer :: fd = -1
+      character(len=:), allocatable :: path
+   end type open_file
+
+   !> The files kept open through a run, and the first failed write.
    type :: output_files
       character(len=:), allocatable :: dir
-      integer :: lock = -1, pull = -1
-      integer :: snapshots = -1, n_snapshots = 0  ! snapshots.dat (&control snapshot_every)
-      integer :: progress = -1                    ! summary.txt while the run goes
-      ! (units from NEWUNIT are negative and never -1: -1 marks a file not open)
+      type(open_file) :: lock, pull, snapshots, progress
+      integer :: n_snapshots = 0                  ! blocks in snapshots.dat (&control snapshot_every)
       logical :: failed = .false.
       character(len=:), allocatable :: failure    ! '<file>: <the system's reason>'
    end type output_files
@@ -68,9 +74,7 @@ contains
       type(output_files), intent(out) :: out
       character(len=*), intent(out) :: errmsg
       character(len=:), allocatable :: why
-      character(len=256) :: iomsg
-      integer :: stat, k, u
-      logical :: exists
+      integer :: stat, k
       errmsg = ''
       out%dir = trim(dir)
       call make_directory(out%dir, stat, why)
@@ -79,81 +83,76 @@ contains
          return
       end if
       do k = 1, size(result_files)
-         inquire (file=out%dir//'/'//trim(result_files(k)), exist=exists)
-         if (.not. exists) cycle
-         open (newunit=u, file=out%dir//'/'//trim(result_files(k)), status='old', iostat=stat, &
-               iomsg=iomsg)
-         if (stat == 0) close (u, status='delete', iostat=stat, iomsg=iomsg)
+         call file_remove(out%dir//'/'//trim(result_files(k)), stat, why)
          if (stat /= 0) then
             errmsg = 'cannot remove '//out%dir//'/'//trim(result_files(k))//' of an earlier run: '// &
-                     trim(iomsg)
+                     why
             return
          end if
       end do
       call open_new(out, 'summary.txt', out%progress)
       call write_progress(out, 'start', 0.0_dp, 0)
       call open_new(out, 'lock.dat', out%lock)
+      call put(out, out%lock, '# drawbead locking: '//trim(title)//nl// &
+               '# 1:H/h 2:F/(E h) 3:F[N/mm] 4:newton_iterations 5:dH/h 6:min_localization_indicator[-]'// &
+               ' 7:max_penetration/h 8:N/(E h) 9:N[N/mm]'//nl// &
+               '# F = upward force of the lower tool on the sheet per unit width (punch force);'// &
+               ' N = horizontal reaction at the right edge'//nl)
       call open_new(out, 'pull.dat', out%pull)
-      if (out%failed) then
-         errmsg = out%failure
-         return
-      end if
-      write (out%lock, '(a)', iostat=stat, iomsg=iomsg) '# drawbead locking: '//trim(title), &
-         '# 1:H/h 2:F/(E h) 3:F[N/mm] 4:newton_iterations 5:dH/h 6:min_localization_indicator[-]'// &
-         ' 7:max_penetration/h 8:N/(E h) 9:N[N/mm]', &
-         '# F = upward force of the lower tool on the sheet per unit width (punch force);'// &
-         ' N = horizontal reaction at the right edge'
-      call check_io(out, out%lock, stat, iomsg)
-      write (out%pull, '(a)', iostat=stat, iomsg=iomsg) '# drawbead pulling: '//trim(title), &
-         '# 1:delta/h 2:N/(E h) 3:N[N/mm] 4:newton_iterations 5:d(delta)/h 6:min_localization_indicator[-]'// &
-         ' 7:lift/(E h) 8:lift[N/mm] 9:max_penetration/h 10:F/(E h)', &
-         '# N = restraining force (horizontal reaction at the right edge) per unit width;'// &
-         ' lift = vertical force of the sheet opening the binder (on the upper tool)'
-      call check_io(out, out%pull, stat, iomsg)
-      flush (out%lock, iostat=stat, iomsg=iomsg)
-      call check_io(out, out%lock, stat, iomsg)
-      flush (out%pull, iostat=stat, iomsg=iomsg)
-      call check_io(out, out%pull, stat, iomsg)
+      call put(out, out%pull, '# drawbead pulling: '//trim(title)//nl// &
+               '# 1:delta/h 2:N/(E h) 3:N[N/mm] 4:newton_iterations 5:d(delta)/h'// &
+               ' 6:min_localization_indicator[-] 7:lift/(E h) 8:lift[N/mm] 9:max_penetration/h'// &
+               ' 10:F/(E h)'//nl// &
+               '# N = restraining force (horizontal reaction at the right edge) per unit width;'// &
+               ' lift = vertical force of the sheet opening the binder (on the upper tool)'//nl)
       if (out%failed) errmsg = out%failure
    end subroutine open_outputs
 
-   !> OPEN_NEW: open a new result file of the run's directory for writing.
+   !> OPEN_NEW: create a result file of the run's directory.
    !>  out   [in,out] the run's files (a failure is recorded)
    !>  name  [in]     file name inside out%dir
-   !>  unit  [out]    its unit, -1 when it could not be opened
-   subroutine open_new(out, name, unit)
+   !>  f     [out]    the open file (fd = -1 when it could not be created)
+   subroutine open_new(out, name, f)
       type(output_files), intent(inout) :: out
       character(len=*), intent(in) :: name
-      integer, intent(out) :: unit
+      type(open_file), intent(out) :: f
       integer :: stat
-      character(len=256) :: iomsg
-      open (newunit=unit, file=out%dir//'/'//name, status='replace', action='write', &
-            iostat=stat, iomsg=iomsg)
-      if (stat /= 0) then
-         unit = -1
-         if (.not. out%failed) out%failure = out%dir//'/'//name//': '//trim(iomsg)
-         out%failed = .true.
-      end if
+      character(len=:), allocatable :: why
+      f%path = out%dir//'/'//name
+      call file_create(f%path, f%fd, stat, why)
+      call record_failure(out, f, stat, why)
    end subroutine open_new
 
-   !> CHECK_IO: record the first failed transfer on a unit (its file name
-   !> and the system's reason).
-   !>  out    [in,out] the run's files
-   !>  unit   [in]     the unit written, flushed or closed
-   !>  stat   [in]     its iostat
-   !>  iomsg  [in]     its iomsg
-   subroutine check_io(out, unit, stat, iomsg)
+   !> PUT: append text (whole lines) to an open file of the run.
+   !>  out   [in,out] the run's files (a failure is recorded)
+   !>  f     [in]     the file; nothing is written when it is not open or
+   !>                 a write has failed already
+   !>  text  [in]     the bytes, lines ended by achar(10)
+   subroutine put(out, f, text)
       type(output_files), intent(inout) :: out
-      integer, intent(in) :: unit, stat
-      character(len=*), intent(in) :: iomsg
-      character(len=512) :: name
-      integer :: ios
+      type(open_file), intent(in) :: f
+      character(len=*), intent(in) :: text
+      integer :: stat
+      character(len=:), allocatable :: why
+      if (f%fd == -1 .or. out%failed) return
+      call file_write(f%fd, text, stat, why)
+      call record_failure(out, f, stat, why)
+   end subroutine put
+
+   !> RECORD_FAILURE: keep the first failure of the run's files.
+   !>  out   [in,out] the run's files
+   !>  f     [in]     the file concerned
+   !>  stat  [in]     0, or errno
+   !>  why   [in]     the system's reason
+   subroutine record_failure(out, f, stat, why)
+      type(output_files), intent(inout) :: out
+      type(open_file), intent(in) :: f
+      integer, intent(in) :: stat
+      character(len=*), intent(in) :: why
       if (stat == 0 .or. out%failed) return
-      name = '(a closed unit)'
-      inquire (unit=unit, name=name, iostat=ios)
       out%failed = .true.
-      out%failure = trim(name)//': '//trim(iomsg)
-   end subroutine check_io
+      out%failure = f%path//': '//why
+   end subroutine record_failure
 
    !> WRITE_PROGRESS: summary.txt while the run goes: status = running, the
    !> phase and the last converged load, rewritten in place (same length)
@@ -169,30 +168,53 @@ contains
       real(dp), intent(in) :: load_over_h
       integer, intent(in) :: increments
       integer :: stat
-      character(len=256) :: iomsg
-      if (out%progress == -1) return
-      rewind (out%progress, iostat=stat, iomsg=iomsg)
-      if (stat == 0) write (out%progress, '(a/a,a5/a,es24.16e3/a,i10)', iostat=stat, iomsg=iomsg) &
-         'status = running', 'phase = ', phase, 'load_over_h = ', load_over_h, 'increments = ', &
-         increments
-      if (stat == 0) flush (out%progress, iostat=stat, iomsg=iomsg)
-      call check_io(out, out%progress, stat, iomsg)
+      character(len=:), allocatable :: why
+      character(len=5) :: padded
+      character(len=128) :: buf
+      if (out%progress%fd == -1 .or. out%failed) return
+      padded = phase
+      write (buf, '(a,es24.16e3,a,i10)') 'status = running'//nl//'phase = '//padded//nl// &
+         'load_over_h = ', load_over_h, nl//'increments = ', increments
+      call file_write_at(out%progress%fd, trim(buf)//nl, 0, stat, why)
+      call record_failure(out, out%progress, stat, why)
    end subroutine write_progress
 
-   !> WRITE_ROW: one data row, flushed; a failure is recorded in out.
+   !> WRITE_ROW: one data row, at once; a failure is recorded in out.
    !>  out     [in,out] the run's files
-   !>  unit    [in]     an open file of the run (out%lock, out%pull)
+   !>  f       [in]     an open file of the run (out%lock, out%pull)
    !>  values  [in]     the row
-   subroutine write_row(out, unit, values)
+   subroutine write_row(out, f, values)
       type(output_files), intent(inout) :: out
-      integer, intent(in) :: unit
+      type(open_file), intent(in) :: f
       real(dp), intent(in) :: values(:)
-      integer :: stat
-      character(len=256) :: iomsg
-      write (unit, fmt_row, iostat=stat, iomsg=iomsg) values
-      if (stat == 0) flush (unit, iostat=stat, iomsg=iomsg)
-      call check_io(out, unit, stat, iomsg)
+      character(len=25*size(values)) :: buf
+      write (buf, fmt_row) values
+      call put(out, f, buf//nl)
    end subroutine write_row
+
+   !> WRITE_TEXT_FILE: a whole file at once (summary.txt), replacing it.
+   !>  path  [in]  the file
+   !>  text  [in]  its bytes
+   !>  stat  [out] 0, or errno of the failed create, write or close
+   !>  msg   [out] '<path>: <the system's reason>' when stat /= 0
+   subroutine write_text_file(path, text, stat, msg)
+      character(len=*), intent(in) :: path, text
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: msg
+      integer :: fd, stat2
+      character(len=:), allocatable :: why, why2
+      msg = ''
+      call file_create(path, fd, stat, why)
+      if (stat == 0) then
+         call file_write(fd, text, stat, why)
+         call file_close(fd, stat2, why2)
+         if (stat == 0 .and. stat2 /= 0) then
+            stat = stat2
+            why = why2
+         end if
+      end if
+      if (stat /= 0) msg = path//': '//why
+   end subroutine write_text_file
 
    !> WRITE_STRAINS: strain distribution over the sheet, one row per Gauss point.
    !>  out   [in,out] the run's files (the file goes in out%dir; a failure
@@ -205,16 +227,11 @@ contains
       character(len=*), intent(in) :: name, what
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
-      integer :: unit, stat
-      character(len=256) :: iomsg
-      call open_new(out, name, unit)
-      if (unit == -1) return
-      write (unit, '(a)', iostat=stat, iomsg=iomsg) '# drawbead strain distribution '//trim(what), &
-         strain_columns
-      call check_io(out, unit, stat, iomsg)
-      call write_strain_rows(out, unit, m, s)
-      close (unit, iostat=stat, iomsg=iomsg)
-      call check_io(out, unit, stat, iomsg)
+      type(open_file) :: f
+      call open_new(out, name, f)
+      call put(out, f, '# drawbead strain distribution '//trim(what)//nl//strain_columns//nl)
+      call write_strain_rows(out, f, m, s)
+      call close_file(out, f)
    end subroutine write_strains
 
    !> OPEN_SNAPSHOTS: open snapshots.dat in the output directory and write
@@ -228,29 +245,21 @@ contains
       character(len=*), intent(in) :: title
       real(dp), intent(in) :: every
       character(len=*), intent(out) :: errmsg
-      integer :: stat
-      character(len=256) :: iomsg
       character(len=32) :: buf
       errmsg = ''
       call open_new(out, 'snapshots.dat', out%snapshots)
-      if (out%failed) then
-         errmsg = out%failure
-         return
-      end if
       write (buf, '(g0.6)') every
-      write (out%snapshots, '(a)', iostat=stat, iomsg=iomsg) '# drawbead strain snapshots: '// &
-         trim(title), &
-         '# one block (gnuplot index 0, 1, ...) at the first converged increment at or past'// &
-         ' each multiple of '//trim(buf)//'h of H (locking) and of delta (pulling);'// &
-         ' each block opens with a line: # block K phase load/h increment', strain_columns
-      if (stat == 0) flush (out%snapshots, iostat=stat, iomsg=iomsg)
-      call check_io(out, out%snapshots, stat, iomsg)
+      call put(out, out%snapshots, '# drawbead strain snapshots: '//trim(title)//nl// &
+               '# one block (gnuplot index 0, 1, ...) at the first converged increment at or past'// &
+               ' each multiple of '//trim(buf)//'h of H (locking) and of delta (pulling);'// &
+               ' each block opens with a line: # block K phase load/h increment'//nl// &
+               strain_columns//nl)
       out%n_snapshots = 0
       if (out%failed) errmsg = out%failure
    end subroutine open_snapshots
 
-   !> WRITE_SNAPSHOT: append one block of strain rows to snapshots.dat,
-   !> flushed; blocks are separated by two blank lines (gnuplot's index).
+   !> WRITE_SNAPSHOT: append one block of strain rows to snapshots.dat;
+   !> blocks are separated by two blank lines (gnuplot's index).
    !>  out    [in,out] the run's files (nothing is written if not open)
    !>  m, s   [in] model and converged state
    !>  phase  [in] 'lock' or 'pull'
@@ -263,35 +272,34 @@ contains
       character(len=*), intent(in) :: phase
       real(dp), intent(in) :: load_over_h
       integer, intent(in) :: increment
-      integer :: stat
-      character(len=256) :: iomsg
-      if (out%snapshots == -1) return
-      stat = 0
-      if (out%n_snapshots > 0) write (out%snapshots, '(/)', iostat=stat, iomsg=iomsg)
-      if (stat == 0) write (out%snapshots, '(a,i0,1x,a,1x,es24.16e3,1x,i0)', iostat=stat, &
-                            iomsg=iomsg) '# block ', out%n_snapshots, phase, load_over_h, increment
-      call check_io(out, out%snapshots, stat, iomsg)
+      character(len=128) :: buf
+      if (out%snapshots%fd == -1) return
+      if (out%n_snapshots > 0) call put(out, out%snapshots, nl//nl)
+      write (buf, '(a,i0,1x,a,1x,es24.16e3,1x,i0)') '# block ', out%n_snapshots, phase, &
+         load_over_h, increment
+      call put(out, out%snapshots, trim(buf)//nl)
       call write_strain_rows(out, out%snapshots, m, s)
-      flush (out%snapshots, iostat=stat, iomsg=iomsg)
-      call check_io(out, out%snapshots, stat, iomsg)
       out%n_snapshots = out%n_snapshots + 1
    end subroutine write_snapshot
 
    !> WRITE_STRAIN_ROWS: the rows of a strain file, one per Gauss point
-   !> (columns: strain_columns).
+   !> (columns: strain_columns), in one write.
    !>  out   [in,out] the run's files (a failure is recorded)
-   !>  unit  [in] open file
+   !>  f     [in] open file
    !>  m, s  [in] model and converged state
-   subroutine write_strain_rows(out, unit, m, s)
+   subroutine write_strain_rows(out, f, m, s)
       type(output_files), intent(inout) :: out
-      integer, intent(in) :: unit
+      type(open_file), intent(in) :: f
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
-      integer :: e, ig, dofs(8), mid, stat
-      character(len=256) :: iomsg
+      integer, parameter :: row_len = 13*25 + 1
+      character(len=:), allocatable :: rows
+      integer :: e, ig, dofs(8), mid, k
       real(dp) :: le, nv(4), dn(4), d2n(4), v, w, h, eps, top, bot, e22, epmax
       h = m%thickness
       mid = (m%npt + 1)/2
+      allocate (character(len=row_len*n_gauss*m%n_el) :: rows)
+      k = 0
       do e = 1, m%n_el
          dofs = element_dofs(e)
          le = m%x(e + 1) - m%x(e)
@@ -304,14 +312,15 @@ contains
             bot = s%hn(1, ih_strain, ig, e)
             e22 = s%hn(mid, ih_statev + 1, ig, e)
             epmax = maxval(s%hn(:, ih_statev, ig, e))
-            write (unit, fmt_row, iostat=stat, iomsg=iomsg) gauss_position(m, e, ig)/h, &
+            write (rows(k + 1:k + row_len - 1), fmt_row) gauss_position(m, e, ig)/h, &
                (gauss_position(m, e, ig) + v)/h, &
                w/h, eps, log(1.0_dp + eps), top, bot, e22, epmax, s%gpn(2, ig, e)*h, &
                s%gpn(3, ig, e)/(m%youngs*h), s%gpn(4, ig, e)/(m%youngs*h*h), s%indicator(ig, e)
-            call check_io(out, unit, stat, iomsg)
-            if (out%failed) return
+            rows(k + row_len:k + row_len) = nl
+            k = k + row_len
          end do
       end do
+      call put(out, f, rows)
    end subroutine write_strain_rows
 
    !> WRITE_TOOLS: the tools' centreline surfaces at the lower tool's rise H,
@@ -329,28 +338,22 @@ contains
       real(dp), intent(in) :: shift
       integer, parameter :: n = 400
       real(dp) :: xy(2, n)
-      integer :: unit, it, k, stat
-      character(len=256) :: iomsg
+      type(open_file) :: f
+      integer :: it, k
       if (.not. m%has_tools) return
-      call open_new(out, name, unit)
-      if (unit == -1) return
-      write (unit, '(a)', iostat=stat, iomsg=iomsg) &
-         '# drawbead tool surfaces (centreline surfaces: the physical surfaces'// &
-         ' offset by h/2 toward the sheet) '//trim(what), &
-         '# 1:x/h 2:y/h ; block 0 = upper (female) tool, block 1 = lower (male) tool'
-      call check_io(out, unit, stat, iomsg)
+      call open_new(out, name, f)
+      call put(out, f, '# drawbead tool surfaces (centreline surfaces: the physical surfaces'// &
+               ' offset by h/2 toward the sheet) '//trim(what)//nl// &
+               '# 1:x/h 2:y/h ; block 0 = upper (female) tool, block 1 = lower (male) tool'//nl)
       do it = 1, 2
          call tool_sample(m%tool(it), n, xy)
          if (it == 2) xy(2, :) = xy(2, :) + shift
-         if (it == 2) write (unit, '(a)', iostat=stat, iomsg=iomsg) '', ''
-         call check_io(out, unit, stat, iomsg)
+         if (it == 2) call put(out, f, nl//nl)
          do k = 1, n
-            write (unit, fmt_row, iostat=stat, iomsg=iomsg) xy(:, k)/m%thickness
-            call check_io(out, unit, stat, iomsg)
+            call write_row(out, f, xy(:, k)/m%thickness)
          end do
       end do
-      close (unit, iostat=stat, iomsg=iomsg)
-      call check_io(out, unit, stat, iomsg)
+      call close_file(out, f)
    end subroutine write_tools
 
    !> CLOSE_OUTPUTS: close the files kept open (the progress summary too:
@@ -358,22 +361,23 @@ contains
    !>  out  [in,out] the run's files (a failed close is recorded)
    subroutine close_outputs(out)
       type(output_files), intent(inout) :: out
-      call close_one(out, out%lock)
-      call close_one(out, out%pull)
-      call close_one(out, out%snapshots)
-      call close_one(out, out%progress)
+      call close_file(out, out%lock)
+      call close_file(out, out%pull)
+      call close_file(out, out%snapshots)
+      call close_file(out, out%progress)
    end subroutine close_outputs
 
-   !> CLOSE_ONE: close a unit of the run if open (NEWUNIT numbers are
-   !> negative and never -1, the value of a closed file); -1 after.
-   subroutine close_one(out, unit)
+   !> CLOSE_FILE: close a file of the run if open; fd = -1 after.
+   !>  out  [in,out] the run's files (a failed close is recorded)
+   !>  f    [in,out] the file
+   subroutine close_file(out, f)
       type(output_files), intent(inout) :: out
-      integer, intent(inout) :: unit
+      type(open_file), intent(inout) :: f
       integer :: stat
-      character(len=256) :: iomsg
-      if (unit == -1) return
-      close (unit, iostat=stat, iomsg=iomsg)
-      call check_io(out, unit, stat, iomsg)
-      unit = -1
-   end subroutine close_one
+      character(len=:), allocatable :: why
+      if (f%fd == -1) return
+      call file_close(f%fd, stat, why)
+      call record_failure(out, f, stat, why)
+      f%fd = -1
+   end subroutine close_file
 end module output

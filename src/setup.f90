@@ -9,12 +9,12 @@
 module setup
    use kinds, only: dp
    use errors, only: error_list, add_error
-   use text, only: lower, file_exists
+   use text, only: lower, file_exists, num
    use deck, only: deck_type
    use controls, only: controls_type
    use model, only: model_type, model_init
    use material_j2, only: read_curve_file, law_swift, law_voce, law_table
-   use tools, only: tool_type
+   use tools, only: tool_type, tool_gap, tool_sample
    use bead_builder, only: build_rectangular_bead
    use profile_io, only: read_profile
    implicit none
@@ -47,6 +47,8 @@ contains
       deck_ok = errs%count == 0
       call material_constants(d, props, errs)
       call tools_of_deck(d, deck_ok, upper, lower_tool, errs)
+      if (deck_ok .and. errs%count == 0 .and. d%bead /= 'none') &
+         call check_clearance(d, upper, lower_tool, errs)
       call controls_of_deck(d, ctl)
       if (errs%count > 0) return
 
@@ -168,6 +170,60 @@ contains
          end if
       end select
    end subroutine tools_of_deck
+
+   !> CHECK_CLEARANCE: tools that cannot hold the sheet at the lock depth
+   !> are refused.  The tools are centreline surfaces (the physical surfaces
+   !> offset by h/2 toward the sheet, docs/theory.md §5), so a physical gap
+   !> of at least the sheet's thickness everywhere is a centreline gap of at
+   !> least 0: no point of either surface may lie inside the other tool
+   !> (tool_gap's d > 0) with the lower tool raised by lock_depth.  Each
+   !> surface is sampled at 4000 points along its length; 1e-6 h of overlap
+   !> is allowed for round-off (the binder faces meet exactly at full lock).
+   !>  d             [in]     the deck (dimensions and lock depth, for the message)
+   !>  upper, lower  [in]     the tools at rise 0
+   !>  errs          [in,out] one error when they cross
+   subroutine check_clearance(d, upper, lower, errs)
+      type(deck_type), intent(in) :: d
+      type(tool_type), intent(in) :: upper, lower
+      type(error_list), intent(inout) :: errs
+      integer, parameter :: n = 4000
+      real(dp) :: xy(2, n), depth, worst, at(2), gap, nrm(2), dn, tng(2), h
+      integer :: k, seg
+      character(len=:), allocatable :: what
+      h = d%thickness
+      depth = d%lock_depth
+      worst = 0.0_dp
+      at = 0.0_dp
+      call tool_sample(lower, n, xy)
+      do k = 1, n
+         call tool_gap(upper, xy(1, k), xy(2, k) + depth, gap, nrm, dn, tng, seg)
+         if (gap > worst) then
+            worst = gap
+            at = [xy(1, k), xy(2, k) + depth]
+         end if
+      end do
+      call tool_sample(upper, n, xy)
+      do k = 1, n
+         call tool_gap(lower, xy(1, k), xy(2, k) - depth, gap, nrm, dn, tng, seg)
+         if (gap > worst) then
+            worst = gap
+            at = xy(:, k)
+         end if
+      end do
+      if (worst <= 1.0e-6_dp*h) return
+      if (d%bead == 'rectangular') then
+         what = 'the male tool does not fit its groove (r1 = '//num(d%r1)//', r2 = '//num(d%r2)// &
+                ', b1 = '//num(d%b1)//', b2 = '//num(d%b2)//', h1 = '//num(d%h1)//', h2 = '// &
+                num(d%h2)//' mm)'
+      else
+         what = 'the profiles '''//trim(d%upper_profile)//''' and '''//trim(d%lower_profile)// &
+                ''' cross'
+      end if
+      call add_error(errs, "deck '"//trim(d%deck_file)//"', group &tools: "//what// &
+                     ' at lock_depth = '//num(depth)//' mm: the tools overlap by '//num(worst)// &
+                     ' mm = '//num(worst/h)//' h near (x, y) = ('//num(at(1))//', '//num(at(2))// &
+                     ') mm, where the physical gap must be at least the sheet thickness')
+   end subroutine check_clearance
 
    !> CONTROLS_OF_DECK: the step and output controls of a deck.
    !>  d    [in]  the deck

@@ -6,6 +6,8 @@ module summary
    use model, only: model_type, state_type
    use record, only: run_record, run_ok, run_no_convergence, run_interrupted, run_write_failed
    use energy, only: energy_totals
+   use output, only: write_text_file
+   use text, only: itoa
    implicit none
    private
    public :: write_summary, steady_force, summary_value
@@ -84,8 +86,8 @@ contains
 
    !> WRITE_SUMMARY: write summary.txt.
    !>  path [in] file; m, s, ctl, rec [in] the run; cpu [in] CPU seconds
-   !>  ios  [out] 0, or the iostat of the first failed open, write or close
-   !>  iomsg [out] the system's reason when ios /= 0
+   !>  ios  [out] 0, or errno of the failed create, write or close
+   !>  iomsg [out] '<path>: <the system's reason>' when ios /= 0
    subroutine write_summary(path, m, s, ctl, rec, cpu, ios, iomsg)
       character(len=*), intent(in) :: path
       type(model_type), intent(in) :: m
@@ -94,14 +96,12 @@ contains
       type(run_record), intent(in) :: rec
       real(dp), intent(in) :: cpu
       integer, intent(out) :: ios
-      character(len=*), intent(out) :: iomsg
-      integer :: u
+      character(len=:), allocatable, intent(out) :: iomsg
+      character(len=:), allocatable :: text
       real(dp) :: h, eh, fsteady, steady_at, thinning, energy(4), pull_work
       logical :: steady
       character(len=32) :: status
-      iomsg = ''
-      open (newunit=u, file=path, status='replace', action='write', iostat=ios, iomsg=iomsg)
-      if (ios /= 0) return
+      text = ''
       h = m%thickness
       eh = m%youngs*h
       if (rec%status == run_no_convergence) then
@@ -117,89 +117,88 @@ contains
       end if
       call steady_force(rec, h, fsteady, steady_at, steady)
       thinning = 1.0_dp - minval(s%hn(m%npt, ih_zbar, :, :) - s%hn(1, ih_zbar, :, :))/h
-      if (ios == 0) write (u, '(a)', iostat=ios, iomsg=iomsg) '# drawbead summary: '//trim(ctl%title), &
-         'status = '//trim(status)
-      if (ios == 0) write (u, '(a)', iostat=ios, iomsg=iomsg) 'localization_phase = '// &
-         trim(merge(rec%loc_phase, 'none    ', rec%localized))
-      call put(u, ios, iomsg, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'pull')
-      call put(u, ios, iomsg, 'lock_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'lock')
-      call put(u, ios, iomsg, 's_star_over_h', rec%s_star/h, rec%localized)
+      call add(text, '# drawbead summary: '//trim(ctl%title))
+      call add(text, 'status = '//trim(status))
+      call add(text, 'localization_phase = '// &
+         trim(merge(rec%loc_phase, 'none    ', rec%localized)))
+      call put(text, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'pull')
+      call put(text, 'lock_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'lock')
+      call put(text, 's_star_over_h', rec%s_star/h, rec%localized)
       ! the mesh-objective tearing measure: mid-surface strain averaged over
       ! tearing_length reaching the plane-strain maximum-load strain
-      if (ios == 0) write (u, '(a)', iostat=ios, iomsg=iomsg) 'nonlocal_localization_phase = '// &
-         trim(merge(rec%nl_phase, 'none    ', rec%nl_localized))
-      call put(u, ios, iomsg, 'delta_cr_nonlocal_over_h', rec%nl_load_cr/h, &
+      call add(text, 'nonlocal_localization_phase = '// &
+         trim(merge(rec%nl_phase, 'none    ', rec%nl_localized)))
+      call put(text, 'delta_cr_nonlocal_over_h', rec%nl_load_cr/h, &
                               rec%nl_localized .and. rec%nl_phase == 'pull')
-      call put(u, ios, iomsg, 'lock_cr_nonlocal_over_h', rec%nl_load_cr/h, &
+      call put(text, 'lock_cr_nonlocal_over_h', rec%nl_load_cr/h, &
                               rec%nl_localized .and. rec%nl_phase == 'lock')
-      call put(u, ios, iomsg, 's_star_nonlocal_over_h', rec%nl_s_star/h, rec%nl_localized)
-      call put(u, ios, iomsg, 'tearing_length_over_h', ctl%tearing_length_over_h, .true.)
-      call put(u, ios, iomsg, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
+      call put(text, 's_star_nonlocal_over_h', rec%nl_s_star/h, rec%nl_localized)
+      call put(text, 'tearing_length_over_h', ctl%tearing_length_over_h, .true.)
+      call put(text, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
       ! the first state bent tighter than fold_curvature: past it the forces
       ! depend on the mesh (a hinge one or two elements wide)
-      if (ios == 0) write (u, '(a)', iostat=ios, iomsg=iomsg) 'fold_phase = '// &
-         trim(merge(rec%fold_phase, 'none    ', rec%folded))
-      call put(u, ios, iomsg, 'fold_load_over_h', rec%fold_load/h, rec%folded)
-      call put(u, ios, iomsg, 's_fold_over_h', rec%fold_s/h, rec%folded)
-      call put(u, ios, iomsg, 'fold_curvature', ctl%fold_curvature, .true.)
-      call put(u, ios, iomsg, 'lock_force_over_Eh', rec%lock_force/eh, m%has_tools)
-      call put(u, ios, iomsg, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
-      call put(u, ios, iomsg, 'final_force_over_Eh', rec%pull_force(max(rec%n_pull, 1))/eh, rec%n_pull > 0)
-      call put(u, ios, iomsg, 'steady_force_over_Eh', fsteady/eh, steady)
-      call put(u, ios, iomsg, 'steady_reached_at_delta_over_h', steady_at/h, steady)
-      call put(u, ios, iomsg, 'final_lift_over_Eh', rec%last_lift/eh, rec%n_pull > 0 .and. m%has_tools)
-      call put(u, ios, iomsg, 'max_thinning', thinning, .true.)
-      call put(u, ios, iomsg, 'max_penetration_over_h', rec%max_penetration, m%has_tools)
-      call put(u, ios, iomsg, 'final_delta_over_h', merge(rec%pull_delta(max(rec%n_pull, 1)), &
+      call add(text, 'fold_phase = '// &
+         trim(merge(rec%fold_phase, 'none    ', rec%folded)))
+      call put(text, 'fold_load_over_h', rec%fold_load/h, rec%folded)
+      call put(text, 's_fold_over_h', rec%fold_s/h, rec%folded)
+      call put(text, 'fold_curvature', ctl%fold_curvature, .true.)
+      call put(text, 'lock_force_over_Eh', rec%lock_force/eh, m%has_tools)
+      call put(text, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
+      call put(text, 'final_force_over_Eh', rec%pull_force(max(rec%n_pull, 1))/eh, rec%n_pull > 0)
+      call put(text, 'steady_force_over_Eh', fsteady/eh, steady)
+      call put(text, 'steady_reached_at_delta_over_h', steady_at/h, steady)
+      call put(text, 'final_lift_over_Eh', rec%last_lift/eh, rec%n_pull > 0 .and. m%has_tools)
+      call put(text, 'max_thinning', thinning, .true.)
+      call put(text, 'max_penetration_over_h', rec%max_penetration, m%has_tools)
+      call put(text, 'final_delta_over_h', merge(rec%pull_delta(max(rec%n_pull, 1)), &
                               0.0_dp, rec%n_pull > 0)/h, .true.)
       ! energy balance: external work = elastic + plastic + penalty + friction
       call energy_totals(m, s, energy)
-      call put(u, ios, iomsg, 'energy_external_work', rec%work, .true.)
-      call put(u, ios, iomsg, 'energy_elastic', energy(1), .true.)
-      call put(u, ios, iomsg, 'energy_plastic', energy(2), .true.)
-      call put(u, ios, iomsg, 'energy_penalty', energy(3), .true.)
-      call put(u, ios, iomsg, 'energy_friction', energy(4), .true.)
-      call put(u, ios, iomsg, 'energy_balance_error', (rec%work - sum(energy))/max(abs(rec%work), tiny(1.0_dp)), &
+      call put(text, 'energy_external_work', rec%work, .true.)
+      call put(text, 'energy_elastic', energy(1), .true.)
+      call put(text, 'energy_plastic', energy(2), .true.)
+      call put(text, 'energy_penalty', energy(3), .true.)
+      call put(text, 'energy_friction', energy(4), .true.)
+      call put(text, 'energy_balance_error', (rec%work - sum(energy))/max(abs(rec%work), tiny(1.0_dp)), &
                               rec%work > 0.0_dp)
       pull_work = rec%work - rec%work_pull_start
-      call put(u, ios, iomsg, 'pull_work', pull_work, rec%n_pull > 0)
-      call put(u, ios, iomsg, 'pull_energy_balance_error', &
+      call put(text, 'pull_work', pull_work, rec%n_pull > 0)
+      call put(text, 'pull_energy_balance_error', &
                               (pull_work - sum(energy - rec%energy_pull_start))/max(abs(pull_work), tiny(1.0_dp)), &
                               rec%n_pull > 0 .and. pull_work > 0.0_dp)
-      if (ios == 0) write (u, '(a,i0)', iostat=ios, iomsg=iomsg) 'increments = ', rec%increments
-      if (ios == 0) write (u, '(a,i0)', iostat=ios, iomsg=iomsg) 'newton_iterations = ', &
-         rec%newton_iterations
-      if (ios == 0) write (u, '(a,i0)', iostat=ios, iomsg=iomsg) 'cutbacks = ', rec%cutbacks
-      call put(u, ios, iomsg, 'cpu_seconds', cpu, .true.)
-      if (ios == 0) then
-         close (u, iostat=ios, iomsg=iomsg)
-      else
-         close (u)
-      end if
+      call add(text, 'increments = '//itoa(rec%increments))
+      call add(text, 'newton_iterations = '//itoa(rec%newton_iterations))
+      call add(text, 'cutbacks = '//itoa(rec%cutbacks))
+      call put(text, 'cpu_seconds', cpu, .true.)
+      call write_text_file(path, text, ios, iomsg)
    end subroutine write_summary
 
-   !> PUT: one 'key = value' line with a real value, or 'none' if absent;
-   !> nothing once a write has failed.
-   !>  unit   [in]     the summary file
-   !>  ios    [in,out] 0 until a write fails, then its iostat
-   !>  iomsg  [in,out] the system's reason of the failure
+   !> PUT: append one 'key = value' line with a real value, or 'none' if
+   !> absent.
+   !>  text   [in,out] the summary so far
    !>  key    [in]     the key
    !>  value  [in]     the value
    !>  present_flag [in] .false.: write 'none'
-   subroutine put(unit, ios, iomsg, key, value, present_flag)
-      integer, intent(in) :: unit
-      integer, intent(inout) :: ios
-      character(len=*), intent(inout) :: iomsg
+   pure subroutine put(text, key, value, present_flag)
+      character(len=:), allocatable, intent(inout) :: text
       character(len=*), intent(in) :: key
       real(dp), intent(in) :: value
       logical, intent(in) :: present_flag
       character(len=32) :: buf
-      if (ios /= 0) return
       if (present_flag) then
          write (buf, '(es24.16e3)') value
-         write (unit, '(a)', iostat=ios, iomsg=iomsg) key//' = '//trim(adjustl(buf))
+         call add(text, key//' = '//trim(adjustl(buf)))
       else
-         write (unit, '(a)', iostat=ios, iomsg=iomsg) key//' = none'
+         call add(text, key//' = none')
       end if
    end subroutine put
+
+   !> ADD: append one line to the summary.
+   !>  text  [in,out] the summary so far
+   !>  line  [in]     the line, without its end
+   pure subroutine add(text, line)
+      character(len=:), allocatable, intent(inout) :: text
+      character(len=*), intent(in) :: line
+      text = text//line//achar(10)
+   end subroutine add
 end module summary
