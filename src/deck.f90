@@ -39,7 +39,7 @@ module deck
       ieee_set_halting_mode, ieee_set_flag
    use kinds, only: dp
    use errors, only: error_list, add_error, warn
-   use material_j2, only: read_curve_file
+   use hardening, only: read_curve_file
    implicit none
    private
    public :: deck_type, read_deck, echo_deck, material_props, lower

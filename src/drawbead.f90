@@ -9,6 +9,7 @@ program drawbead
    use errors, only: error_list, report_errors
    use deck, only: deck_type, read_deck, echo_deck, material_props
    use model, only: model_type, state_type, model_init, state_init
+   use material, only: builtin_material
    use tools, only: build_rectangular_bead, read_profile
    use analysis, only: run_record, run_record_init, run_phase
    use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools, &
@@ -59,7 +60,8 @@ program drawbead
    call echo_deck(d, output_unit)
 
    h = d%thickness
-   call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, material_props(d))
+   call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, &
+                   builtin_material(material_props(d)))
    select case (d%bead)
    case ('rectangular')
       margin = 0.5_dp*d%length + 10.0_dp*h
