@@ -63,6 +63,7 @@ DEPS := $(BUILD)/deps.mk
 UMAT ?=
 UMAT_FFLAGS ?= $(FFLAGS)
 UMAT_DIR := $(BUILD)/user
+UMAT_STAMP := $(UMAT_DIR)/umat_path.txt
 UMAT_EXAMPLE := input/umat_linear_hardening.f90
 ifneq (,$(strip $(UMAT)))
 BIN_UMAT_OBJS := $(UMAT_DIR)/user_umat.o $(UMAT_DIR)/umat_linked.o
@@ -130,8 +131,8 @@ endif
 
 # The external umat files (they may use the library's modules, e.g. kinds;
 # a module of their own goes to $(UMAT_DIR)).  $(UMAT_STAMP) holds the
-# UMAT path of the last link, so that another UMAT= relinks the program.
-UMAT_STAMP := $(UMAT_DIR)/umat_path.txt
+# UMAT path (and flags) of the last build, so that another UMAT= relinks
+# the program.
 ifneq (,$(NEED_DEPS))
 $(shell mkdir -p $(UMAT_DIR) && { echo '$(UMAT) $(UMAT_FFLAGS)' | cmp -s - $(UMAT_STAMP) || echo '$(UMAT) $(UMAT_FFLAGS)' > $(UMAT_STAMP); })
 endif
