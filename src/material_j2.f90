@@ -15,7 +15,11 @@
 !>       work conjugate to sbar (sigma : d eps_p = sbar d ebar_p);
 !>     - hardening: Swift, Voce, or a piecewise-linear table (module
 !>       hardening).
-!>   Backward-Euler return mapping, consistent (algorithmic) tangent.
+!>   Elastic predictor; beyond the yield surface backward-Euler return
+!>   mapping (DESIGN §4)
+!>     sigma = sigma_trial - dp D n(sigma),   sbar(sigma) = sigma_y(ep_n + dp),
+!>     n = d sbar / d sigma = P sigma / sbar,  P = [[1, -r], [-r, 1]], r = R/(1+R),
+!>   and its consistent (algorithmic) tangent.
 !>
 !> Conventions (NDI = 2, NSHR = 0, NTENS = 2)
 !>   stress(1:2) = (sigma11, sigma33);  strain (eps11, eps33); the thickness
@@ -86,14 +90,9 @@ contains
    !>
    !> Given the start-of-increment stress and state and the log-strain
    !> increment, returns the end-of-increment stress and state and the
-   !> consistent tangent.  Elastic predictor; if the trial state lies
-   !> outside the Hill yield surface, backward-Euler return mapping
-   !>   sigma = sigma_trial - dp D n(sigma),   sbar(sigma) = sigma_y(ep_n + dp),
-   !>   n = d sbar / d sigma = P sigma / sbar,  P = [[1, -r], [-r, 1]],
-   !>   r = R/(1+R)
-   !> (DESIGN §4).  The width strain increment dstran(2) is honoured as
-   !> given (the section passes 0: plane strain).  The work is done by
-   !> umat_block with a block of one.
+   !> consistent tangent of the law of the module header.  The width strain
+   !> increment dstran(2) is honoured as given (the section passes 0: plane
+   !> strain).  The work is done by umat_block with a block of one.
    !>
    !> stress  [in,out] (ntens) Kirchhoff stress (sigma11, sigma33): start of
    !>                  the increment on entry, end on exit.
@@ -227,7 +226,8 @@ contains
       real(dp) :: f1, f2, a11, a12, a22, det, x11, x12, x22, xn1, xn2, den, dsig1, dsig2
       logical :: ok
 
-      if (.not. sizes_ok(props, nprops, nstatv)) then
+      ! sizes only (the values are check_props's job, done once at set-up)
+      if (nstatv < n_statev .or. .not. law_sizes_ok(props, nprops)) then
          ddsdde = 0.0_dp
          pnewdt = min(pnewdt, 0.0_dp)
          return
@@ -603,20 +603,6 @@ contains
 
       w = (s11**2 + s33**2 - 2.0_dp*nu*s11*s33)/(2.0_dp*e_mod)
    end function elastic_energy
-   !> .true. if props and statev are long enough for umat (no value checks:
-   !> that is check_props's job, done once at set-up).
-   !>
-   !> props  [in] material constants.
-   !> nprops [in] size of props.
-   !> nstatv [in] size of statev.
-   pure function sizes_ok(props, nprops, nstatv) result(ok)
-      integer, intent(in) :: nprops, nstatv
-      real(dp), intent(in) :: props(nprops)
-      logical :: ok
-
-      ok = nstatv >= n_statev .and. law_sizes_ok(props, nprops)
-   end function sizes_ok
-
    !> Validate the material constants for umat: the elastic constants here,
    !> the hardening law in module hardening (check_law_props).
    !>
