@@ -5,12 +5,14 @@
 #   make check-build     build bin/drawbead-check in build-check/ (checked flags)
 #   make test-check      run the whole test suite with the checked build
 #   make run [DECK=...]  run bin/drawbead on $(DECK)
+#   make UMAT=my_umat.f90  build bin/drawbead with a user's material routine
 #   make clean           remove build/, build-check/, bin/ and out/
 #   make help            list the targets and variables
 #
 # Variables (override on the command line): FC, FFLAGS, ARCH_FLAGS, CHECK_FFLAGS,
 # LDFLAGS, LDLIBS, DECK, PFUNIT_DIR (a pFUnit 4 install: the folder holding
-# include/PFUNIT.mk; without it the tests use tests/pfunit_lite.py).
+# include/PFUNIT.mk; without it the tests use tests/pfunit_lite.py), UMAT,
+# UMAT_FFLAGS.
 
 # make's built-in FC is f77 (origin "default"; "undefined" under make -R)
 ifneq (,$(filter default undefined,$(origin FC)))
@@ -50,6 +52,25 @@ LIB_OBJS := $(patsubst src/%.f90,$(BUILD)/%.o,$(LIB_SRCS))
 MAIN_OBJ := $(BUILD)/drawbead.o
 LIB := $(BUILD)/libdrawbead.a
 DEPS := $(BUILD)/deps.mk
+
+# The material routine umat (module material) is an external subroutine,
+# linked with the program and kept out of the library: UMAT=path names a
+# user's file (compiled with UMAT_FFLAGS, e.g. for a fixed-form, implicitly
+# typed Abaqus routine) linked with src/user/umat_linked.f90
+# (user_umat_linked() = .true.); without it src/user/umat_none.f90 is
+# linked (umat an error path, user_umat_linked() = .false.).  The test
+# runner links the example input/umat_linear_hardening.f90.
+UMAT ?=
+UMAT_FFLAGS ?= $(FFLAGS)
+UMAT_DIR := $(BUILD)/user
+UMAT_STAMP := $(UMAT_DIR)/umat_path.txt
+UMAT_EXAMPLE := input/umat_linear_hardening.f90
+ifneq (,$(strip $(UMAT)))
+BIN_UMAT_OBJS := $(UMAT_DIR)/user_umat.o $(UMAT_DIR)/umat_linked.o
+else
+BIN_UMAT_OBJS := $(UMAT_DIR)/umat_none.o
+endif
+TEST_UMAT_OBJS := $(UMAT_DIR)/umat_example.o $(UMAT_DIR)/umat_linked.o
 
 # Tests: the .pf suites (tests/unit: one per module; tests/verification:
 # problem-level checks), compiled without -std=f2008 and with long lines;
@@ -98,14 +119,40 @@ $(LIB): $(LIB_OBJS) $(DEPS)
 	$(AR) rcs $@ $(LIB_OBJS)
 
 ifneq (,$(wildcard $(MAIN_SRC)))
-$(BIN): $(MAIN_OBJ) $(LIB)
+$(BIN): $(MAIN_OBJ) $(LIB) $(BIN_UMAT_OBJS) $(UMAT_STAMP)
 	@mkdir -p $(@D)
-	$(FC) $(FFLAGS) $(LDFLAGS) -o $@ $(MAIN_OBJ) $(LIB) $(LDLIBS)
+	$(FC) $(FFLAGS) $(LDFLAGS) -o $@ $(MAIN_OBJ) $(BIN_UMAT_OBJS) $(LIB) $(LDLIBS)
 TEST_NEEDS_BIN := $(BIN)
 else
 $(BIN):
 	@echo "make: $(MAIN_SRC) (the main program) does not exist yet" >&2; exit 1
 TEST_NEEDS_BIN :=
+endif
+
+# The external umat files (they may use the library's modules, e.g. kinds;
+# a module of their own goes to $(UMAT_DIR)).  $(UMAT_STAMP) holds the
+# UMAT path (and flags) of the last build, so that another UMAT= relinks
+# the program.
+ifneq (,$(NEED_DEPS))
+$(shell mkdir -p $(UMAT_DIR) && { echo '$(UMAT) $(UMAT_FFLAGS)' | cmp -s - $(UMAT_STAMP) || echo '$(UMAT) $(UMAT_FFLAGS)' > $(UMAT_STAMP); })
+endif
+
+$(UMAT_STAMP):
+	@mkdir -p $(@D)
+	echo '$(UMAT) $(UMAT_FFLAGS)' > $@
+
+$(UMAT_DIR)/%.o: src/user/%.f90 $(BUILD)/kinds.o $(FLAGS_STAMP)
+	@mkdir -p $(@D)
+	$(FC) $(FFLAGS) -I $(BUILD) -J $(UMAT_DIR) -c -o $@ $<
+
+$(UMAT_DIR)/umat_example.o: $(UMAT_EXAMPLE) $(BUILD)/kinds.o $(FLAGS_STAMP)
+	@mkdir -p $(@D)
+	$(FC) $(FFLAGS) -I $(BUILD) -J $(UMAT_DIR) -c -o $@ $<
+
+ifneq (,$(strip $(UMAT)))
+$(UMAT_DIR)/user_umat.o: $(UMAT) $(UMAT_STAMP) $(BUILD)/kinds.o $(FLAGS_STAMP)
+	@mkdir -p $(@D)
+	$(FC) $(UMAT_FFLAGS) -I $(BUILD) -J $(UMAT_DIR) -c -o $@ $<
 endif
 
 # Module dependencies (object -> object) from Debian's makedepf90 (it
@@ -134,12 +181,13 @@ ifneq (,$(strip $(PFUNIT_DIR)))
 # files through vpath) and links $(BUILD)/pfunit/drawbead_tests.
 RUNNER := $(BUILD)/pfunit/drawbead_tests
 
-$(RUNNER): $(LIB) FORCE
+$(RUNNER): $(LIB) $(TEST_UMAT_OBJS) FORCE
 	@mkdir -p $(BUILD)/pfunit
 	$(MAKE) -C $(BUILD)/pfunit -f $(CURDIR)/tests/Makefile drawbead_tests \
 	    PFUNIT_DIR='$(abspath $(PFUNIT_DIR))' TESTS_DIR='$(CURDIR)/tests' \
 	    FC='$(FC)' PF_FFLAGS='$(TEST_FFLAGS) -I$(abspath $(BUILD))' \
-	    DRAWBEAD_LIB='$(abspath $(LIB))' LDLIBS='$(LDLIBS)'
+	    DRAWBEAD_LIB='$(abspath $(LIB))' LDLIBS='$(LDLIBS)' \
+	    UMAT_OBJS='$(abspath $(TEST_UMAT_OBJS))'
 else
 # pfunit_lite: tests/test_X.pf -> $(TEST_DIR)/test_X.f90, plus a driver
 # $(TEST_DIR)/run_tests.f90 and the funit module of tests/funit_lite.f90.
@@ -176,9 +224,9 @@ $(TEST_DIR)/run_tests.f90: $(PF_SRCS) $(PF_LIST) $(LITE)
 $(TEST_DIR)/run_tests.o: $(TEST_DIR)/run_tests.f90 $(PF_OBJS) $(TEST_DIR)/funit.o
 	$(FC) $(TEST_FFLAGS) -J $(TEST_DIR) -c -o $@ $<
 
-$(RUNNER): $(TEST_DIR)/run_tests.o $(PF_OBJS) $(TEST_DIR)/funit.o $(LIB)
+$(RUNNER): $(TEST_DIR)/run_tests.o $(PF_OBJS) $(TEST_DIR)/funit.o $(LIB) $(TEST_UMAT_OBJS)
 	$(FC) $(TEST_FFLAGS) $(LDFLAGS) -o $@ $(TEST_DIR)/run_tests.o $(PF_OBJS) \
-	    $(TEST_DIR)/funit.o $(LIB) $(LDLIBS)
+	    $(TEST_DIR)/funit.o $(TEST_UMAT_OBJS) $(LIB) $(LDLIBS)
 endif
 
 # Runs every suite, then every tests/*.sh (with bash, from the top directory;
@@ -227,6 +275,8 @@ help:
 	@echo "  run                     run $(BIN) $(DECK)"
 	@echo "  clean                   remove build/ build-check/ bin/ out/"
 	@echo "Variables: FC=$(FC) LDLIBS=$(LDLIBS) DECK=$(DECK) PFUNIT_DIR=$(PFUNIT_DIR)"
+	@echo "  UMAT=$(UMAT) (a user's material routine, e.g. $(UMAT_EXAMPLE); empty: none)"
+	@echo "  UMAT_FFLAGS=$(UMAT_FFLAGS) (flags for the UMAT file)"
 	@echo "  FFLAGS=$(FFLAGS)"
 	@echo "  ARCH_FLAGS=$(ARCH_FLAGS) (part of the release FFLAGS; empty: a portable binary)"
 	@echo "  CHECK_FFLAGS=$(CHECK_FFLAGS)"

@@ -11,7 +11,7 @@
 !>              log_residuals, predictor, snapshot_every
 !>   &sheet     thickness, length, n_elements, mesh_beta, left_edge,
 !>              back_tension
-!>   &material  youngs_modulus, poissons_ratio, r_value, hardening,
+!>   &material  model, umat_props, youngs_modulus, poissons_ratio, r_value, hardening,
 !>              swift_k, swift_eps0, swift_n, voce_sigma0, voce_q, voce_b,
 !>              curve_file, thickness_points
 !>   &tools     bead, r1, r2, b1, b2, h1, h2, upper_profile, lower_profile,
@@ -44,13 +44,17 @@ module deck
    use bead_builder, only: bead_a_over_h
    implicit none
    private
-   public :: deck_type, group_names, resolve_defaults, validate_deck
+   public :: deck_type, group_names, resolve_defaults, validate_deck, max_umat_props, &
+             umat_props_given
 
    !> Marks a default that is resolved from the thickness after reading.
    real(dp), parameter :: unset = -huge(1.0_dp)
 
    !> Default sheet thickness h (mm), 0.030 in.
    real(dp), parameter :: default_thickness = 0.762_dp
+
+   !> Room for a user UMAT's constants (&material umat_props).
+   integer, parameter :: max_umat_props = 64
 
    !> The namelist groups, in the order they are read and echoed.
    character(len=8), parameter :: group_names(5) = &
@@ -80,6 +84,8 @@ module deck
       real(dp) :: youngs_modulus = 207000.0_dp        ! MPa
       real(dp) :: poissons_ratio = 0.3_dp
       real(dp) :: r_value = 1.0_dp                    ! normal anisotropy R
+      character(len=16) :: model = 'j2'               ! 'j2' (built in) | 'umat' (make UMAT=...)
+      real(dp) :: umat_props(max_umat_props) = unset  ! model = 'umat': the user's PROPS, in order
       character(len=16) :: hardening = 'swift'        ! 'swift' | 'voce' | 'table'
       real(dp) :: swift_k = 548.0_dp                  ! K (eps0 + ep)^n, MPa
       real(dp) :: swift_eps0 = 0.0085_dp
@@ -194,6 +200,7 @@ contains
 
       character(len=:), allocatable :: p
       real(dp) :: full
+      integer :: n, k
 
       p = trim(d%deck_file)
 
@@ -227,6 +234,23 @@ contains
       call check_real(errs, at(p, 'material', 'poissons_ratio'), d%poissons_ratio, &
                       lo=-1.0_dp, hi=0.5_dp, lo_open=.true., hi_open=.true.)
       call check_real(errs, at(p, 'material', 'r_value'), d%r_value, lo=0.0_dp, lo_open=.true.)
+      call check_choice(errs, at(p, 'material', 'model'), d%model, &
+                        [character(len=16) :: 'j2', 'umat'])
+      if (d%model == 'umat') then
+         n = umat_props_given(d)
+         if (n == 0) call fail(errs, at(p, 'material', 'umat_props'), &
+                               "must give the user UMAT's constants with model = 'umat'")
+         do k = 1, n
+            call check_real(errs, at(p, 'material', 'umat_props('//itoa(k)//')'), d%umat_props(k))
+         end do
+         if (any(.not. is_unset(d%umat_props(n + 1:)))) call fail(errs, &
+            at(p, 'material', 'umat_props'), 'must be given from umat_props(1) on without gaps'// &
+            ' (entry '//itoa(n + 1)//' is missing)')
+         ! hardening, swift_*, voce_*, curve_file are not used: the user's
+         ! routine has its own law (youngs_modulus stays the scale of the output)
+      else if (any(.not. is_unset(d%umat_props))) then
+         call warn(at(p, 'material', 'umat_props')//": ignored unless model = 'umat'")
+      end if
       call check_choice(errs, at(p, 'material', 'hardening'), d%hardening, &
                         [character(len=16) :: 'swift', 'voce', 'table'])
       select case (trim(d%hardening))
@@ -491,8 +515,21 @@ contains
       end if
    end function bound_text
 
+   !> umat_props_given -- how many of umat_props are given: the entries
+   !> before the first unset one.
+   pure function umat_props_given(d) result(n)
+      type(deck_type), intent(in) :: d       !< [in] the deck
+      integer :: n
+
+      n = 0
+      do while (n < max_umat_props)
+         if (is_unset(d%umat_props(n + 1))) exit
+         n = n + 1
+      end do
+   end function umat_props_given
+
    !> is_unset -- .true. for the `unset` sentinel (safe for NaN and Inf).
-   pure function is_unset(x) result(yes)
+   elemental function is_unset(x) result(yes)
       real(dp), intent(in) :: x              !< [in] the value
       logical :: yes
 

@@ -17,7 +17,7 @@ module deck_reader
    use kinds, only: dp
    use errors, only: error_list, add_error, warn
    use text, only: lower, load_text, itoa
-   use deck, only: deck_type, group_names, resolve_defaults, validate_deck
+   use deck, only: deck_type, group_names, resolve_defaults, validate_deck, max_umat_props
    use deck_scan, only: group_text, scan_groups, split_assignments, clip, strip_separators, &
                         is_letter
    implicit none
@@ -84,6 +84,7 @@ contains
 
       d%left_edge = lower(adjustl(d%left_edge))
       d%hardening = lower(adjustl(d%hardening))
+      d%model = lower(adjustl(d%model))
       d%bead = lower(adjustl(d%bead))
       call resolve_defaults(d)
       call validate_deck(d, errs)
@@ -298,15 +299,18 @@ contains
       character(len=*), intent(inout) :: msg
       character(len=echo_len), intent(out) :: lines(echo_rows)
 
+      character(len=16) :: model, hardening
+      real(dp) :: umat_props(max_umat_props)
       real(dp) :: youngs_modulus, poissons_ratio, r_value
-      character(len=16) :: hardening
       real(dp) :: swift_k, swift_eps0, swift_n, voce_sigma0, voce_q, voce_b
       character(len=512) :: curve_file
       integer :: thickness_points
-      namelist /material/ youngs_modulus, poissons_ratio, r_value, hardening, &
+      namelist /material/ model, umat_props, youngs_modulus, poissons_ratio, r_value, hardening, &
          swift_k, swift_eps0, swift_n, voce_sigma0, voce_q, voce_b, curve_file, &
          thickness_points
 
+      model = d%model
+      umat_props = d%umat_props
       youngs_modulus = d%youngs_modulus
       poissons_ratio = d%poissons_ratio
       r_value = d%r_value
@@ -329,6 +333,8 @@ contains
          write (lines, nml=material, delim='quote', iostat=ios, iomsg=msg)
       end select
       if (ios /= 0 .or. action == act_write) return
+      d%model = model
+      d%umat_props = umat_props
       d%youngs_modulus = youngs_modulus
       d%poissons_ratio = poissons_ratio
       d%r_value = r_value

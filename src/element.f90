@@ -10,6 +10,7 @@ module element
    use hermite, only: n_gauss, gauss_xi, gauss_wt, hermite_shape
    use kinematics, only: strain_measures
    use section, only: section_response
+   use material, only: material_type
    implicit none
    private
    public :: element_internal, element_gradients, v_dofs, w_dofs
@@ -43,15 +44,16 @@ contains
    !>  le     [in]  reference element length
    !>  ul     [in]  element dofs (trial state)
    !>  wz     [in]  Simpson weights through the thickness
-   !>  props  [in]  material constants
+   !>  mat    [in]  the material
    !>  hn     [in]  converged history (npt, n_hist, n_gauss)
    !>  h1     [out] trial history
    !>  re     [out] internal force vector (8)
    !>  ke     [out] tangent (8, 8)
    !>  gp     [out] per Gauss point: eps, rho, N, M
    !>  pnewdt [in,out] < 1 on return if the increment must be cut
-   pure subroutine element_internal(le, ul, wz, props, hn, h1, re, ke, gp, pnewdt)
-      real(dp), intent(in) :: le, ul(8), wz(:), props(:)
+   subroutine element_internal(le, ul, wz, mat, hn, h1, re, ke, gp, pnewdt)
+      real(dp), intent(in) :: le, ul(8), wz(:)
+      type(material_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :, :)
       real(dp), contiguous, intent(out) :: h1(:, :, :)
       real(dp), intent(out) :: re(8), ke(8, 8), gp(4, n_gauss)
@@ -70,7 +72,7 @@ contains
       do ig = 1, n_gauss
          call element_gradients(gauss_xi(ig), le, ul, g, gm)
          call strain_measures(g, eps, rho, deps, drho, d2eps, d2rho)
-         call section_response(eps, rho, wz, props, hn(:, :, ig), h1(:, :, ig), &
+         call section_response(eps, rho, wz, mat, hn(:, :, ig), h1(:, :, ig), &
                                force, moment, c, pnewdt)
          if (pnewdt < 1.0_dp) return
          gp(:, ig) = [eps, rho, force, moment]

@@ -1,5 +1,6 @@
-!> material_j2 -- UMAT-like elasto-plastic material for one through-thickness
-!> station of a plane-strain sheet (DESIGN §4).
+!> material_j2 -- the built-in elasto-plastic material (J2 / Hill 1948) for
+!> one through-thickness station of a plane-strain sheet (DESIGN §4), as a
+!> UMAT with the Abaqus argument list and as a vectorized block routine.
 !>
 !> Purpose
 !>   Stress update at a material point with thickness stress sigma22 = 0
@@ -12,37 +13,57 @@
 !>       R = 1 is von Mises;
 !>     - associative flow, isotropic hardening sbar = sigma_y(ebar_p), ebar_p
 !>       work conjugate to sbar (sigma : d eps_p = sbar d ebar_p);
-!>     - hardening: Swift, Voce, or a piecewise-linear table.
-!>   Backward-Euler return mapping, consistent (algorithmic) tangent.
+!>     - hardening: Swift, Voce, or a piecewise-linear table (module
+!>       hardening).
+!>   Elastic predictor; beyond the yield surface backward-Euler return
+!>   mapping (DESIGN §4)
+!>     sigma = sigma_trial - dp D n(sigma),   sbar(sigma) = sigma_y(ep_n + dp),
+!>     n = d sbar / d sigma = P sigma / sbar,  P = [[1, -r], [-r, 1]], r = R/(1+R),
+!>   and its consistent (algorithmic) tangent.
 !>
-!> Conventions
-!>   stress(1:2) = (sigma11, sigma33);  strain (eps11, eps33).
-!>   statev(1) = ebar_p, statev(2) = eps22 (total thickness log strain),
-!>   statev(3) = sigma33 (copy for output), statev(4) = continuum tangent
-!>   d sigma11 / d eps11 at fixed eps33 (alpha of (A.1): plastic only if the
-!>   increment was plastic), statev(5:6) = sigma_y(ebar_p) and its slope
-!>   H', cached so that an elastic call evaluates no hardening law
-!>   (statev(5) <= 0: not yet known, computed on entry; the all-zero virgin
-!>   state is therefore valid).
-!>   props(1:4) = E, nu, R, law id; then the law constants (see umat).
+!> Conventions (NDI = 2, NSHR = 0, NTENS = 2)
+!>   stress(1:2) = (sigma11, sigma33);  strain (eps11, eps33); the thickness
+!>   direction 22 carries sigma22 = 0 and its strain is a state variable.
+!>   State variables statev(1:n_statev):
+!>     statev(isv_eqps)      ebar_p, equivalent plastic strain;
+!>     statev(isv_eps22)     eps22, total thickness log strain;
+!>     statev(isv_sigma33)   sigma33 (copy for output);
+!>     statev(isv_tangent)   continuum tangent d sigma11 / d eps11 at fixed
+!>                           eps33 (alpha of (A.1): plastic only if the
+!>                           increment was plastic);
+!>     statev(isv_flow_stress), statev(isv_hardening_slope)
+!>                           sigma_y(ebar_p) and its slope H', cached so that
+!>                           an elastic call evaluates no hardening law
+!>                           (statev(isv_flow_stress) <= 0: not yet known,
+!>                           computed on entry; the all-zero virgin state is
+!>                           therefore valid).
+!>   Material constants props(:): props(ip_youngs) = E, props(ip_poisson) =
+!>   nu, props(ip_r_value) = R, then the hardening law: its id at
+!>   props(ip_law) and its constants after it (layout in module hardening).
 !>
 !> Call check_props once at set-up: umat trusts its constants (it is called
 !> ~1e6 times per run) and only guards against out-of-bounds access.
 module material_j2
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
+   use hardening, only: ip_law, flow_stress, flow_stress_block, plastic_work, law_sizes_ok, &
+                        check_law_props
+   use text, only: itoa, num
    implicit none
    private
 
-   public :: n_statev, n_props_fixed, law_swift, law_voce, law_table, max_load_strain
-   public :: umat, umat_block, flow_stress, hill_equivalent, check_props, read_curve_file
+   public :: n_statev, isv_eqps, isv_eps22, isv_sigma33, isv_tangent, isv_flow_stress, &
+             isv_hardening_slope, ip_youngs, ip_poisson, ip_r_value
+   public :: umat, umat_block, hill_equivalent, check_props
 
+   !> places of the state variables in statev (module header)
+   integer, parameter :: isv_eqps = 1, isv_eps22 = 2, isv_sigma33 = 3, isv_tangent = 4, &
+                         isv_flow_stress = 5, isv_hardening_slope = 6
    !> number of state variables umat needs
    integer, parameter :: n_statev = 6
-   !> props entries common to every law: E, nu, R, law id
-   integer, parameter :: n_props_fixed = 4
-   !> hardening law ids (props(4))
-   integer, parameter :: law_swift = 1, law_voce = 2, law_table = 3
+   !> places of the elastic constants in props: E, nu, R (the hardening law
+   !> follows at props(ip_law), module hardening)
+   integer, parameter :: ip_youngs = 1, ip_poisson = 2, ip_r_value = 3
 
    !> local Newton: iteration limit and relative tolerance on the yield
    !> residual |sbar - sigma_y| / sigma_y (quadratic convergence reaches it
@@ -62,77 +83,86 @@ module material_j2
 
 contains
 
-   !> UMAT: stress update for one increment of log strain.
+   !> UMAT: stress update of one material point for one increment of log
+   !> strain, with the Abaqus UMAT argument list (order as in CalculiX
+   !> umat.f).  What the program passes in each argument, and the contract
+   !> of a user's routine with the same list, is written in module material.
    !>
    !> Given the start-of-increment stress and state and the log-strain
    !> increment, returns the end-of-increment stress and state and the
-   !> consistent tangent.  Elastic predictor; if the trial state lies
-   !> outside the Hill yield surface, backward-Euler return mapping
-   !>   sigma = sigma_trial - dp D n(sigma),   sbar(sigma) = sigma_y(ep_n + dp),
-   !>   n = d sbar / d sigma = P sigma / sbar,  P = [[1, -r], [-r, 1]],
-   !>   r = R/(1+R)
-   !> (DESIGN §4).  The width strain increment dstran(2) is honoured as
-   !> given (the section passes 0: plane strain).  One material point;
-   !> the work is done by umat_block with a block of one.
+   !> consistent tangent of the law of the module header.  The width strain
+   !> increment dstran(2) is honoured as given (the section passes 0: plane
+   !> strain).  The work is done by umat_block with a block of one.
    !>
-   !> stress  [in,out] Kirchhoff stress (sigma11, sigma33): start of the
-   !>                  increment on entry, end on exit.
-   !> statev  [in,out] state variables (size nstatv >= n_statev):
-   !>                  (1) ebar_p, (2) eps22 total thickness log strain,
-   !>                  (3) sigma33, (4) continuum tangent dsigma11/deps11 at
-   !>                  fixed eps33, end state: E/(1-nu^2) for an elastic or
-   !>                  unloading increment, elasto-plastic (A.1) with
-   !>                  alpha = 1 for a plastic one, (5:6) sigma_y and H' at
-   !>                  ebar_p (a cache; 0 = not yet known).
-   !> ddsdde  [out]    consistent tangent d sigma_end / d dstran (2x2,
-   !>                  symmetric); D for an elastic increment.
+   !> stress  [in,out] (ntens) Kirchhoff stress (sigma11, sigma33): start of
+   !>                  the increment on entry, end on exit.
+   !> statev  [in,out] (nstatv >= n_statev) state variables (module header);
+   !>                  statev(isv_tangent) at the end: E/(1-nu^2) for an
+   !>                  elastic or unloading increment, elasto-plastic (A.1)
+   !>                  with alpha = 1 for a plastic one.
+   !> ddsdde  [out]    (ntens, ntens) consistent tangent d sigma_end /
+   !>                  d dstran (symmetric); D for an elastic increment.
    !> sse     [in,out] elastic strain energy density at the end of the
    !>                  increment, (s11^2 + s33^2 - 2 nu s11 s33)/(2E).
    !> spd     [in,out] plastic dissipation density, accumulated:
-   !>                  spd = spd + int sigma_y d ep over the increment (exact: W(ep_n + dp) - W(ep_n)
-   !>                  with W the integral of the hardening curve).
-   !> stran   [in]     total log strain (eps11, eps33) at the start of the
-   !>                  increment.  Not needed: the stress is the state of
-   !>                  this additive model.  Kept for the UMAT interface.
-   !> dstran  [in]     log strain increment (deps11, deps33).
-   !> props   [in]     material constants (size nprops):
-   !>                  (1) E, (2) nu, (3) R, (4) law id, then
-   !>                  Swift (law_swift): (5:7) = K, eps0, n,
-   !>                     sigma_y = K (eps0 + ebar_p)^n;
-   !>                  Voce (law_voce): (5:7) = sigma0, Q, b,
-   !>                     sigma_y = sigma0 + Q (1 - exp(-b ebar_p));
-   !>                  table (law_table): (5) = m, (6:5+2m) = ebar_p_1,
-   !>                     sigma_1, ..., ebar_p_m, sigma_m (ebar_p_1 = 0),
-   !>                     linear extrapolation of the last segment.
-   !> nprops  [in]     size of props.
+   !>                  spd = spd + int sigma_y d ep over the increment (exact:
+   !>                  W(ep_n + dp) - W(ep_n), W the integral of the curve).
+   !> scd     [in,out] creep dissipation: not used, left as it is.
+   !> rpl, ddsddt, drplde, drpldt [out] heat generation and its
+   !>                  derivatives: 0 (a mechanical law).
+   !> stran   [in]     (ntens) total log strain at the start of the
+   !>                  increment: not used (the stress is the state of this
+   !>                  additive model).
+   !> dstran  [in]     (ntens) log strain increment (deps11, deps33).
+   !> time, dtime, temp, dtemp, predef, dpred, cmname [in] not used
+   !>                  (rate-independent, isothermal, one material).
+   !> ndi, nshr, ntens [in] 2, 0, 2: anything else is a programming error
+   !>                  (see pnewdt).
    !> nstatv  [in]     size of statev.
+   !> props   [in]     (nprops) material constants (module header).
+   !> nprops  [in]     size of props.
+   !> coords, drot, celent, dfgrd0, dfgrd1, noel, npt, layer, kspt, kstep,
+   !> kinc    [in]     not used (a homogeneous law in the fibre frame).
    !> pnewdt  [in,out] untouched on success.  If the local Newton fails
    !>                  (no convergence, non-positive flow stress, non-finite
    !>                  value): pnewdt = min(pnewdt, 0.5), and stress,
    !>                  statev, sse, spd are returned unchanged (ddsdde = D).
-   !>                  If nprops or nstatv is too small for the law (a
-   !>                  programming error; check_props catches it):
-   !>                  pnewdt = min(pnewdt, 0), nothing changed, ddsdde = 0.
-   pure subroutine umat(stress, statev, ddsdde, sse, spd, stran, dstran, props, nprops, &
-                        nstatv, pnewdt)
-      integer, intent(in) :: nprops, nstatv
-      real(dp), intent(inout) :: stress(2)
-      real(dp), intent(inout) :: statev(nstatv)
-      real(dp), intent(out) :: ddsdde(2, 2)
-      real(dp), intent(inout) :: sse
-      real(dp), intent(inout) :: spd
-      real(dp), intent(in) :: stran(2)
-      real(dp), intent(in) :: dstran(2)
-      real(dp), intent(in) :: props(nprops)
-      real(dp), intent(inout) :: pnewdt
+   !>                  If nprops or nstatv is too small for the law or the
+   !>                  component counts are not (2, 0, 2) (a programming
+   !>                  error; check_props catches the first): pnewdt =
+   !>                  min(pnewdt, 0), nothing changed, ddsdde = 0.
+   pure subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, &
+                        stran, dstran, time, dtime, temp, dtemp, predef, dpred, cmname, ndi, &
+                        nshr, ntens, nstatv, props, nprops, coords, drot, pnewdt, celent, dfgrd0, &
+                        dfgrd1, noel, npt, layer, kspt, kstep, kinc)
+      character(len=80), intent(in) :: cmname
+      integer, intent(in) :: ndi, nshr, ntens, nstatv, nprops, noel, npt, layer, kspt, kstep, kinc
+      real(dp), intent(inout) :: stress(ntens), statev(nstatv), sse, spd, scd, pnewdt
+      real(dp), intent(out) :: ddsdde(ntens, ntens), rpl, ddsddt(ntens), drplde(ntens), drpldt
+      real(dp), intent(in) :: stran(ntens), dstran(ntens), time(2), dtime, temp, dtemp, predef(1), &
+                              dpred(1), props(nprops), coords(3), drot(3, 3), celent, &
+                              dfgrd0(3, 3), dfgrd1(3, 3)
 
       real(dp) :: b_stress(1, 2), b_statev(1, nstatv), b_ddsdde(1, 2, 2), b_sse(1), b_spd(1)
       real(dp) :: b_dstran(1, 2)
 
-      ! stran is not needed (see header); the associate marks it as read.
-      associate (unused => stran)
+      ! The arguments the header marks "not used" are named once here, so
+      ! that the compiler does not report them as unused.
+      associate (u1 => scd, u2 => stran, u3 => time, u4 => dtime, u5 => temp, u6 => dtemp, &
+                 u7 => predef, u8 => dpred, u9 => cmname, u10 => coords, u11 => drot, &
+                 u12 => celent, u13 => dfgrd0, u14 => dfgrd1, u15 => noel, u16 => npt, &
+                 u17 => layer, u18 => kspt, u19 => kstep, u20 => kinc)
       end associate
 
+      rpl = 0.0_dp
+      ddsddt = 0.0_dp
+      drplde = 0.0_dp
+      drpldt = 0.0_dp
+      if (ndi /= 2 .or. nshr /= 0 .or. ntens /= 2) then
+         ddsdde = 0.0_dp
+         pnewdt = min(pnewdt, 0.0_dp)
+         return
+      end if
       b_stress(1, :) = stress
       b_statev(1, :) = statev
       b_sse(1) = sse
@@ -196,15 +226,16 @@ contains
       real(dp) :: f1, f2, a11, a12, a22, det, x11, x12, x22, xn1, xn2, den, dsig1, dsig2
       logical :: ok
 
-      if (.not. sizes_ok(props, nprops, nstatv)) then
+      ! sizes only (the values are check_props's job, done once at set-up)
+      if (nstatv < n_statev .or. .not. law_sizes_ok(props, nprops)) then
          ddsdde = 0.0_dp
          pnewdt = min(pnewdt, 0.0_dp)
          return
       end if
 
-      e_mod = props(1)
-      nu = props(2)
-      r_value = props(3)
+      e_mod = props(ip_youngs)
+      nu = props(ip_poisson)
+      r_value = props(ip_r_value)
       r = r_value/(1.0_dp + r_value)
       e_ps = e_mod/(1.0_dp - nu**2)
       d12 = e_ps*nu
@@ -219,17 +250,18 @@ contains
       ddsdde(:, 1, 2) = d12
       ddsdde(:, 2, 2) = e_ps
 
-      ! Elastic predictor; the flow stress comes from the cache statev(5:6),
-      ! which a virgin point (statev(5) <= 0) has not filled yet.
+      ! Elastic predictor; the flow stress comes from the cache statev(isv_flow_stress)
+      ! and statev(isv_hardening_slope), which a virgin point
+      ! (statev(isv_flow_stress) <= 0) has not filled yet.
       do k = 1, nblock
          sig_tr1(k) = stress(k, 1) + e_ps*dstran(k, 1) + d12*dstran(k, 2)
          sig_tr2(k) = stress(k, 2) + d12*dstran(k, 1) + e_ps*dstran(k, 2)
          seq_tr(k) = sqrt(hill_a*(sig_tr1(k) + sig_tr2(k))**2 + hill_b*(sig_tr1(k) - sig_tr2(k))**2)
-         sy_n(k) = statev(k, 5)
-         h_n(k) = statev(k, 6)
+         sy_n(k) = statev(k, isv_flow_stress)
+         h_n(k) = statev(k, isv_hardening_slope)
       end do
       do k = 1, nblock
-         if (.not. sy_n(k) > 0.0_dp) call flow_stress(statev(k, 1), props, nprops, sy_n(k), h_n(k))
+         if (.not. sy_n(k) > 0.0_dp) call flow_stress(statev(k, isv_eqps), props, nprops, sy_n(k), h_n(k))
       end do
 
       ! Points whose trial state lies outside the yield surface.  A trial
@@ -247,10 +279,10 @@ contains
          k = idx(j)
          s_tr(j) = sig_tr1(k) + sig_tr2(k)
          t_tr(j) = sig_tr1(k) - sig_tr2(k)
-         ep_n(j) = statev(k, 1)
+         ep_n(j) = statev(k, isv_eqps)
          sig_n1(j) = stress(k, 1)
          sig_n2(j) = stress(k, 2)
-         eps22(j) = statev(k, 2)
+         eps22(j) = statev(k, isv_eps22)
          spd_p(j) = spd(k)
          sy_p(j) = sy_n(k)
          h_p(j) = h_n(k)
@@ -326,25 +358,26 @@ contains
       ! Thickness strain: plane stress sigma22 = 0 gives
       ! d eps22 = -(nu/E)(d s11 + d s33) (DESIGN §4, no plastic part).
       do k = 1, nblock
-         statev(k, 2) = statev(k, 2) - nu/e_mod*(sig_tr1(k) - stress(k, 1) + sig_tr2(k) - stress(k, 2))
+         statev(k, isv_eps22) = statev(k, isv_eps22) &
+                                - nu/e_mod*(sig_tr1(k) - stress(k, 1) + sig_tr2(k) - stress(k, 2))
          stress(k, 1) = sig_tr1(k)
          stress(k, 2) = sig_tr2(k)
-         statev(k, 3) = sig_tr2(k)
-         statev(k, 4) = e_ps
-         statev(k, 5) = sy_n(k)
-         statev(k, 6) = h_n(k)
+         statev(k, isv_sigma33) = sig_tr2(k)
+         statev(k, isv_tangent) = e_ps
+         statev(k, isv_flow_stress) = sy_n(k)
+         statev(k, isv_hardening_slope) = h_n(k)
          sse(k) = elastic_energy(sig_tr1(k), sig_tr2(k), e_mod, nu)
       end do
       do j = 1, np
          k = idx(j)
          stress(k, 1) = sig1(j)
          stress(k, 2) = sig2(j)
-         statev(k, 1) = ep_n(j) + dp_inc(j)
-         statev(k, 2) = eps22(j)
-         statev(k, 3) = sig2(j)
-         statev(k, 4) = ct11(j)
-         statev(k, 5) = sy_end(j)
-         statev(k, 6) = h_end(j)
+         statev(k, isv_eqps) = ep_n(j) + dp_inc(j)
+         statev(k, isv_eps22) = eps22(j)
+         statev(k, isv_sigma33) = sig2(j)
+         statev(k, isv_tangent) = ct11(j)
+         statev(k, isv_flow_stress) = sy_end(j)
+         statev(k, isv_hardening_slope) = h_end(j)
          sse(k) = sse_p(j)
          spd(k) = spd_p(j)
          ddsdde(k, 1, 1) = c11(j)
@@ -410,9 +443,9 @@ contains
       real(dp), dimension(n) :: a_s, a_t, k_eff, gam, gam_lo, gam_hi, g, ep
       integer :: iter, j
 
-      e_mod = props(1)
-      nu = props(2)
-      r = props(3)/(1.0_dp + props(3))
+      e_mod = props(ip_youngs)
+      nu = props(ip_poisson)
+      r = props(ip_r_value)/(1.0_dp + props(ip_r_value))
       k_s = e_mod*(1.0_dp - r)/(1.0_dp - nu)
       k_t = e_mod*(1.0_dp + r)/(1.0_dp + nu)
       do j = 1, n
@@ -539,160 +572,6 @@ contains
          n_out = n_out + far*(1.0_dp - near)
       end do
    end subroutine newton_step_block
-
-   !> Flow stress and hardening modulus at n points (flow_stress, one loop
-   !> per law so that the compiler vectorizes the Swift and Voce laws).
-   !>
-   !> n       [in]  number of points.
-   !> ep      [in]  (n) equivalent plastic strains (>= 0).
-   !> props   [in]  material constants (see umat).
-   !> nprops  [in]  size of props.
-   !> sigma_y [out] (n) flow stress (0 where flow_stress gives 0).
-   !> hardening_modulus [out] (n) d sigma_y / d ebar_p.
-   pure subroutine flow_stress_block(n, ep, props, nprops, sigma_y, hardening_modulus)
-      integer, intent(in) :: n, nprops
-      real(dp), intent(in) :: ep(n)
-      real(dp), intent(in) :: props(nprops)
-      real(dp), intent(out) :: sigma_y(n), hardening_modulus(n)
-
-      real(dp) :: base, ex
-      integer :: j
-
-      if (nprops < n_props_fixed + 3) then
-         sigma_y = 0.0_dp
-         hardening_modulus = 0.0_dp
-         return
-      end if
-      select case (int(props(4)))
-      case (law_swift)
-         ! sigma_y = K (eps0 + ep)^n; 0 (a failure for umat) where
-         ! eps0 + ep <= 0, as in flow_stress
-         do j = 1, n
-            base = max(props(6) + ep(j), tiny(1.0_dp))
-            sigma_y(j) = props(5)*base**props(7)
-            sigma_y(j) = merge(sigma_y(j), 0.0_dp, props(6) + ep(j) > 0.0_dp)
-            hardening_modulus(j) = props(7)*sigma_y(j)/base
-         end do
-      case (law_voce)
-         ! sigma_y = sigma0 + Q (1 - exp(-b ep))
-         do j = 1, n
-            ex = exp(-props(7)*ep(j))
-            sigma_y(j) = props(5) + props(6)*(1.0_dp - ex)
-            hardening_modulus(j) = props(6)*props(7)*ex
-         end do
-      case default
-         do j = 1, n
-            call flow_stress(ep(j), props, nprops, sigma_y(j), hardening_modulus(j))
-         end do
-      end select
-   end subroutine flow_stress_block
-
-   !> Flow stress and hardening modulus of the uniaxial true stress -
-   !> natural strain curve, sigma_y(ebar_p) and d sigma_y / d ebar_p.
-   !>
-   !> ep                [in]  equivalent plastic strain ebar_p (>= 0).
-   !> props             [in]  material constants (see umat); props(4) is the
-   !>                         law id, law constants from props(5).
-   !> nprops            [in]  size of props.
-   !> sigma_y           [out] flow stress.  0 if the law id is unknown, props
-   !>                         is too short, or (Swift) eps0 + ep <= 0: umat
-   !>                         treats a non-positive flow stress as a failure.
-   !> hardening_modulus [out] d sigma_y / d ebar_p (right derivative at a
-   !>                         table point; last segment's slope beyond it).
-   pure subroutine flow_stress(ep, props, nprops, sigma_y, hardening_modulus)
-      integer, intent(in) :: nprops
-      real(dp), intent(in) :: ep
-      real(dp), intent(in) :: props(nprops)
-      real(dp), intent(out) :: sigma_y, hardening_modulus
-
-      real(dp) :: base, ex, slope
-      integer :: m, lo, hi, mid, i
-
-      sigma_y = 0.0_dp
-      hardening_modulus = 0.0_dp
-      if (nprops < n_props_fixed + 1) return
-
-      select case (int(props(4)))
-      case (law_swift)
-         if (nprops < n_props_fixed + 3) return
-         ! sigma_y = K (eps0 + ep)^n
-         base = props(6) + ep
-         if (base <= 0.0_dp) return
-         sigma_y = props(5)*base**props(7)
-         hardening_modulus = props(7)*sigma_y/base
-      case (law_voce)
-         if (nprops < n_props_fixed + 3) return
-         ! sigma_y = sigma0 + Q (1 - exp(-b ep))
-         ex = exp(-props(7)*ep)
-         sigma_y = props(5) + props(6)*(1.0_dp - ex)
-         hardening_modulus = props(6)*props(7)*ex
-      case (law_table)
-         m = nint(props(5))
-         if (m < 2 .or. nprops < n_props_fixed + 1 + 2*m) return
-         ! Points (ebar_p_i, sigma_i) are props(4+2i), props(5+2i).
-         ! Binary search for the segment [i, i+1] holding ep; ep below the
-         ! first or beyond the last point uses the first / last segment.
-         lo = 1
-         hi = m
-         do while (hi - lo > 1)
-            mid = (lo + hi)/2
-            if (ep >= props(4 + 2*mid)) then
-               lo = mid
-            else
-               hi = mid
-            end if
-         end do
-         i = lo
-         slope = (props(7 + 2*i) - props(5 + 2*i))/(props(6 + 2*i) - props(4 + 2*i))
-         sigma_y = props(5 + 2*i) + slope*(ep - props(4 + 2*i))
-         hardening_modulus = slope
-      case default
-         return
-      end select
-   end subroutine flow_stress
-
-   !> Plastic work per unit volume W(ebar_p) = int_0^ebar_p sigma_y de, up
-   !> to a constant of the law (only differences are used): the dissipation
-   !> of a plastic increment is W(ep_n + dp) - W(ep_n) (exact, because on the
-   !> yield surface sigma : d eps_p = sigma_y(ebar_p) d ebar_p).
-   !>   Swift: W = sigma_y (eps0 + ep)/(n + 1)   [+ const]
-   !>   Voce:  W = (sigma0 + Q) ep - (sigma_y - sigma0)/b  (W = sigma0 ep if b = 0)
-   !>   table: the trapezoids of the segments up to ep (last one extrapolated).
-   !>
-   !> ep      [in] equivalent plastic strain.
-   !> sigma_y [in] flow stress at ep (from flow_stress; saves a law call).
-   !> props   [in] material constants (see umat).
-   !> nprops  [in] size of props.
-   pure function plastic_work(ep, sigma_y, props, nprops) result(w)
-      integer, intent(in) :: nprops
-      real(dp), intent(in) :: ep, sigma_y
-      real(dp), intent(in) :: props(nprops)
-      real(dp) :: w
-
-      integer :: m, i
-
-      w = 0.0_dp
-      select case (int(props(4)))
-      case (law_swift)
-         w = sigma_y*(props(6) + ep)/(props(7) + 1.0_dp)
-      case (law_voce)
-         if (props(7) > 0.0_dp) then
-            w = (props(5) + props(6))*ep - (sigma_y - props(5))/props(7)
-         else
-            w = props(5)*ep
-         end if
-      case (law_table)
-         ! Point i is (props(4+2i), props(5+2i)); full segments below ep,
-         ! then the part of the segment holding ep (ending at sigma_y).
-         m = int(props(5))
-         do i = 1, m - 1
-            if (i == m - 1 .or. ep < props(6 + 2*i)) exit
-            w = w + 0.5_dp*(props(5 + 2*i) + props(7 + 2*i))*(props(6 + 2*i) - props(4 + 2*i))
-         end do
-         w = w + 0.5_dp*(props(5 + 2*i) + sigma_y)*(ep - props(4 + 2*i))
-      end select
-   end function plastic_work
-
    !> Hill 1948 equivalent stress for normal anisotropy with zero thickness
    !> stress, paper appendix (A.3) with sigma<22> = 0:
    !>   sbar^2 = s11^2 + s33^2 - (2R/(1+R)) s11 s33.
@@ -724,49 +603,23 @@ contains
 
       w = (s11**2 + s33**2 - 2.0_dp*nu*s11*s33)/(2.0_dp*e_mod)
    end function elastic_energy
-
-   !> .true. if props and statev are long enough for umat (no value checks:
-   !> that is check_props's job, done once at set-up).
+   !> Validate the material constants for umat: the elastic constants here,
+   !> the hardening law in module hardening (check_law_props).
    !>
-   !> props  [in] material constants.
-   !> nprops [in] size of props.
-   !> nstatv [in] size of statev.
-   pure function sizes_ok(props, nprops, nstatv) result(ok)
-      integer, intent(in) :: nprops, nstatv
-      real(dp), intent(in) :: props(nprops)
-      logical :: ok
-
-      ok = .false.
-      if (nstatv < n_statev .or. nprops < n_props_fixed) return
-      if (.not. abs(props(4)) < 1.0e6_dp) return
-      select case (int(props(4)))
-      case (law_swift, law_voce)
-         ok = nprops >= n_props_fixed + 3
-      case (law_table)
-         if (nprops < n_props_fixed + 1) return
-         if (.not. abs(props(5)) < 1.0e6_dp) return
-         ok = int(props(5)) >= 2 .and. nprops >= n_props_fixed + 1 + 2*int(props(5))
-      case default
-         ok = .false.
-      end select
-   end function sizes_ok
-
-   !> Validate the material constants for umat.
-   !>
-   !> props  [in] material constants (see umat).
+   !> props  [in] material constants (module header).
    !> nprops [in] size of props.
    !> Returns '' if valid, otherwise a message naming the first bad entry,
-   !> e.g. "props(2) = nu = 5.000E-01: must satisfy -1 < nu < 0.5".
+   !> e.g. "props(2) = nu = 0.5: must satisfy -1 < nu < 0.5".
    pure function check_props(props, nprops) result(msg)
       integer, intent(in) :: nprops
       real(dp), intent(in) :: props(nprops)
       character(len=:), allocatable :: msg
 
-      integer :: law, m, i, need
+      integer :: i
 
       msg = ''
-      if (nprops < n_props_fixed) then
-         msg = 'need at least ' // itoa(n_props_fixed) // ' props (E, nu, R, law id), got ' &
+      if (nprops < ip_law) then
+         msg = 'need at least ' // itoa(ip_law) // ' props (E, nu, R, law id), got ' &
                // itoa(nprops)
          return
       end if
@@ -777,367 +630,15 @@ contains
          msg = 'props(' // itoa(i) // ') is not a finite number'
          return
       end if
-      if (.not. props(1) > 0.0_dp) then
-         msg = 'props(1) = E = ' // rtoa(props(1)) // ': must be > 0'
-      else if (.not. (props(2) > -1.0_dp .and. props(2) < 0.5_dp)) then
-         msg = 'props(2) = nu = ' // rtoa(props(2)) // ': must satisfy -1 < nu < 0.5'
-      else if (.not. props(3) > 0.0_dp) then
-         msg = 'props(3) = R = ' // rtoa(props(3)) // ': must be > 0'
-      else if (.not. is_integer(props(4), 1, 3)) then
-         msg = 'props(4) = law id = ' // rtoa(props(4)) // ': must be ' // itoa(law_swift) &
-               // ' (Swift), ' // itoa(law_voce) // ' (Voce) or ' // itoa(law_table) // ' (table)'
-      end if
-      if (len(msg) > 0) return
-
-      law = nint(props(4))
-      select case (law)
-      case (law_swift)
-         if (nprops < n_props_fixed + 3) then
-            msg = 'Swift law needs props(5:7) = K, eps0, n; got nprops = ' // itoa(nprops)
-         else if (.not. props(5) > 0.0_dp) then
-            msg = 'props(5) = Swift K = ' // rtoa(props(5)) // ': must be > 0'
-         else if (.not. props(6) > 0.0_dp) then
-            msg = 'props(6) = Swift eps0 = ' // rtoa(props(6)) // ': must be > 0'
-         else if (.not. props(7) >= 0.0_dp) then
-            msg = 'props(7) = Swift n = ' // rtoa(props(7)) // ': must be >= 0'
-         end if
-      case (law_voce)
-         if (nprops < n_props_fixed + 3) then
-            msg = 'Voce law needs props(5:7) = sigma0, Q, b; got nprops = ' // itoa(nprops)
-         else if (.not. props(5) > 0.0_dp) then
-            msg = 'props(5) = Voce sigma0 = ' // rtoa(props(5)) // ': must be > 0'
-         else if (.not. props(6) >= 0.0_dp) then
-            msg = 'props(6) = Voce Q = ' // rtoa(props(6)) // ': must be >= 0 (no softening)'
-         else if (.not. props(7) >= 0.0_dp) then
-            msg = 'props(7) = Voce b = ' // rtoa(props(7)) // ': must be >= 0'
-         end if
-      case (law_table)
-         if (nprops < n_props_fixed + 1) then
-            msg = 'table law needs props(5) = m, number of points'
-            return
-         end if
-         if (.not. is_integer(props(5), 2, 1000000)) then
-            msg = 'props(5) = number of table points = ' // rtoa(props(5)) &
-                  // ': must be a whole number >= 2'
-            return
-         end if
-         m = nint(props(5))
-         need = n_props_fixed + 1 + 2*m
-         if (nprops < need) then
-            msg = 'table law with ' // itoa(m) // ' points needs ' // itoa(need) &
-                  // ' props, got ' // itoa(nprops)
-            return
-         end if
-         ! Point i is (props(4+2i), props(5+2i)).
-         if (abs(props(6)) > 0.0_dp) then
-            msg = 'props(6) = first table plastic strain = ' // rtoa(props(6)) // ': must be 0'
-         else if (.not. props(7) > 0.0_dp) then
-            msg = 'props(7) = first table stress = ' // rtoa(props(7)) // ': must be > 0'
-         else
-            do i = 2, m
-               if (.not. props(4 + 2*i) > props(2 + 2*i)) then
-                  msg = 'table point ' // itoa(i) // ': plastic strain not increasing (' &
-                        // rtoa(props(4 + 2*i)) // ' after ' // rtoa(props(2 + 2*i)) // ')'
-                  exit
-               else if (.not. props(5 + 2*i) >= props(3 + 2*i)) then
-                  msg = 'table point ' // itoa(i) // ': stress decreasing (' &
-                        // rtoa(props(5 + 2*i)) // ' after ' // rtoa(props(3 + 2*i)) // ')'
-                  exit
-               end if
-            end do
-         end if
-      end select
-   end function check_props
-
-   !> Read a hardening curve: a text file of two columns, plastic strain and
-   !> true stress, one point per line.  Blank lines and lines whose first
-   !> non-blank character is '#' are skipped, as is anything after a '#' on
-   !> a data line; columns may be separated by blanks, tabs or commas.
-   !> Checks: every data line holds exactly two numbers; at least 2 points;
-   !> the first plastic strain is 0; plastic strain strictly increasing;
-   !> stress positive and non-decreasing.  Never stops the program.
-   !>
-   !> path   [in]  file name.
-   !> ep     [out] plastic strains (allocated; size 0 on error).
-   !> sigma  [out] true stresses (allocated; size 0 on error).
-   !> errmsg [out] blank on success, otherwise the file, line and problem,
-   !>              e.g. "curve file 'c.txt' line 5: plastic strain not
-   !>              increasing (0.10 after 0.12)" (numbers quoted as written
-   !>              in the file).  A character variable of any length (like
-   !>              iomsg); the message is cut to len(errmsg), so give it
-   !>              room (256 or more).
-   subroutine read_curve_file(path, ep, sigma, errmsg)
-      character(len=*), intent(in) :: path
-      real(dp), allocatable, intent(out) :: ep(:), sigma(:)
-      character(len=*), intent(out) :: errmsg
-
-      character(len=:), allocatable :: line, at, msg
-      character(len=64) :: tok(2), prev(2)
-      character(len=256) :: iomsg
-      real(dp), allocatable :: tmp(:)
-      real(dp) :: x(2)
-      integer :: unit, ios, nline, npt, ntok, k, first(2), last(2)
-
-      msg = ''
-      prev = ''
-      allocate (ep(16), sigma(16))
-      npt = 0
-      nline = 0
-
-      open (newunit=unit, file=path, status='old', action='read', form='formatted', &
-            iostat=ios, iomsg=iomsg)
-      if (ios /= 0) then
-         errmsg = "cannot open curve file '" // path // "': " // trim(iomsg)
-         call fail()
-         return
-      end if
-
-      do
-         call read_line(unit, line, ios, iomsg)
-         if (ios /= 0) exit
-         nline = nline + 1
-         at = "curve file '" // path // "' line " // itoa(nline) // ': '
-         k = index(line, '#')
-         if (k > 0) line = line(:k - 1)
-         call split_fields(line, first, last, ntok)
-         if (ntok == 0) cycle
-         if (ntok /= 2) then
-            msg = at // 'expected 2 numbers (plastic strain, true stress), found ' &
-                     // itoa(ntok) // " fields in '" // trim(adjustl(line)) // "'"
-            exit
-         end if
-         do k = 1, 2
-            tok(k) = line(first(k):last(k))
-            if (.not. parse_real(line(first(k):last(k)), x(k))) then
-               msg = at // "cannot read '" // line(first(k):last(k)) // "' as a number"
-               exit
-            end if
-         end do
-         if (len(msg) > 0) exit
-
-         if (npt == 0 .and. abs(x(1)) > 0.0_dp) then
-            msg = at // 'first plastic strain must be 0 (found ' // trim(tok(1)) // ')'
-         else if (npt > 0 .and. .not. x(1) > ep(max(npt, 1))) then
-            msg = at // 'plastic strain not increasing (' // trim(tok(1)) // ' after ' &
-                     // trim(prev(1)) // ')'
-         else if (.not. x(2) > 0.0_dp) then
-            msg = at // 'stress must be positive (found ' // trim(tok(2)) // ')'
-         else if (npt > 0 .and. .not. x(2) >= sigma(max(npt, 1))) then
-            msg = at // 'stress decreasing (' // trim(tok(2)) // ' after ' &
-                     // trim(prev(2)) // ')'
-         end if
-         if (len(msg) > 0) exit
-
-         if (npt == size(ep)) then
-            allocate (tmp(2*npt))
-            tmp(:npt) = ep(:npt)
-            call move_alloc(tmp, ep)
-            allocate (tmp(2*npt))
-            tmp(:npt) = sigma(:npt)
-            call move_alloc(tmp, sigma)
-         end if
-         npt = npt + 1
-         ep(npt) = x(1)
-         sigma(npt) = x(2)
-         prev = tok
-      end do
-
-      if (len(msg) == 0 .and. .not. is_iostat_end(ios)) then
-         msg = "curve file '" // path // "' line " // itoa(nline + 1) // ': read error: ' &
-                  // trim(iomsg)
-      end if
-      if (len(msg) == 0 .and. npt < 2) then
-         msg = "curve file '" // path // "': need at least 2 points, found " // itoa(npt)
-      end if
-      close (unit)
-      errmsg = msg
-      if (len(msg) > 0) then
-         call fail()
+      if (.not. props(ip_youngs) > 0.0_dp) then
+         msg = 'props(' // itoa(ip_youngs) // ') = E = ' // num(props(ip_youngs)) // ': must be > 0'
+      else if (.not. (props(ip_poisson) > -1.0_dp .and. props(ip_poisson) < 0.5_dp)) then
+         msg = 'props(' // itoa(ip_poisson) // ') = nu = ' // num(props(ip_poisson)) &
+               // ': must satisfy -1 < nu < 0.5'
+      else if (.not. props(ip_r_value) > 0.0_dp) then
+         msg = 'props(' // itoa(ip_r_value) // ') = R = ' // num(props(ip_r_value)) // ': must be > 0'
       else
-         ep = ep(:npt)
-         sigma = sigma(:npt)
+         msg = check_law_props(props, nprops)
       end if
-
-   contains
-
-      !> On error: return empty (allocated) arrays.
-      subroutine fail()
-         if (allocated(ep)) deallocate (ep)
-         if (allocated(sigma)) deallocate (sigma)
-         allocate (ep(0), sigma(0))
-      end subroutine fail
-
-   end subroutine read_curve_file
-
-   !> Read one whole record of any length from a formatted sequential unit.
-   !>
-   !> unit   [in]  connected unit.
-   !> line   [out] the record, without the end-of-record marker.
-   !> iostat [out] 0 on success, iostat_end at end of file, else an error.
-   !> iomsg  [out] message for a non-zero iostat.
-   subroutine read_line(unit, line, iostat, iomsg)
-      integer, intent(in) :: unit
-      character(len=:), allocatable, intent(out) :: line
-      integer, intent(out) :: iostat
-      character(len=*), intent(out) :: iomsg
-
-      character(len=256) :: buf
-      integer :: nread
-
-      line = ''
-      iomsg = ''
-      do
-         read (unit, '(a)', advance='no', iostat=iostat, iomsg=iomsg, size=nread) buf
-         line = line // buf(:nread)
-         if (is_iostat_eor(iostat)) then
-            iostat = 0
-            exit
-         end if
-         if (iostat /= 0) exit
-      end do
-   end subroutine read_line
-
-   !> Locate the fields of a line, separated by blanks, tabs or commas.
-   !>
-   !> line  [in]  text.
-   !> first [out] start of field k in line, for k <= min(ntok, size(first)).
-   !> last  [out] end of field k.
-   !> ntok  [out] number of fields (all of them, also beyond size(first)).
-   pure subroutine split_fields(line, first, last, ntok)
-      character(len=*), intent(in) :: line
-      integer, intent(out) :: first(:), last(:)
-      integer, intent(out) :: ntok
-
-      integer :: i, start
-      logical :: in_field
-
-      first = 1
-      last = 0
-      ntok = 0
-      in_field = .false.
-      start = 1
-      do i = 1, len(line) + 1
-         if (i <= len(line)) then
-            if (.not. is_separator(line(i:i))) then
-               if (.not. in_field) start = i
-               in_field = .true.
-               cycle
-            end if
-         end if
-         if (in_field) then
-            ntok = ntok + 1
-            if (ntok <= size(first)) then
-               first(ntok) = start
-               last(ntok) = i - 1
-            end if
-         end if
-         in_field = .false.
-      end do
-   end subroutine split_fields
-
-   !> .true. for a field separator: blank, tab or comma.
-   !>
-   !> c [in] one character.
-   pure logical function is_separator(c)
-      character(len=1), intent(in) :: c
-
-      is_separator = c == ' ' .or. c == ',' .or. c == achar(9) .or. c == achar(13)
-   end function is_separator
-
-   !> Parse one field as a finite real.  Only digits, signs, '.', and the
-   !> exponent letters e/E/d/D are accepted, with at least one digit, so that
-   !> list-directed input cannot take '/', 'T', 'nan' or 'inf' as a value.
-   !>
-   !> tok [in]  the field.
-   !> x   [out] its value (0 if it does not parse).
-   !> Returns .true. if tok is a finite number.
-   logical function parse_real(tok, x)
-      character(len=*), intent(in) :: tok
-      real(dp), intent(out) :: x
-
-      integer :: ios
-      x = 0.0_dp
-      parse_real = .false.
-      if (len_trim(tok) == 0) return
-      if (verify(trim(tok), '0123456789+-.eEdD') /= 0) return
-      if (scan(tok, '0123456789') == 0) return
-      read (tok, *, iostat=ios) x
-      parse_real = ios == 0 .and. ieee_is_finite(x)
-      if (.not. parse_real) x = 0.0_dp
-   end function parse_real
-
-   !> .true. if x is a whole number in [lo, hi].
-   !>
-   !> x  [in] value.
-   !> lo [in] lowest allowed whole number.
-   !> hi [in] highest allowed whole number.
-   pure logical function is_integer(x, lo, hi)
-      real(dp), intent(in) :: x
-      integer, intent(in) :: lo, hi
-
-      is_integer = .false.
-      if (.not. (x >= real(lo, dp) .and. x <= real(hi, dp))) return
-      is_integer = abs(x - real(nint(x), dp)) <= 0.0_dp
-   end function is_integer
-
-   !> Integer to text, without blanks.
-   !>
-   !> i [in] value.
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-
-      character(len=16) :: buf
-
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
-
-   !> Real to text, 4 significant digits in exponent form (messages only).
-   !>
-   !> x [in] value.
-   pure function rtoa(x) result(s)
-      real(dp), intent(in) :: x
-      character(len=:), allocatable :: s
-
-      character(len=32) :: buf
-
-      write (buf, '(es10.3)') x
-      s = trim(adjustl(buf))
-   end function rtoa
-
-   !> MAX_LOAD_STRAIN: the axial log strain at maximum load in plane-strain
-   !> uniaxial tension (width strain held, sigma22 = 0), where the continuum
-   !> tangent falls to the stress, d tau/d eps = tau (DESIGN §7): the sheet's
-   !> forming limit in plane strain (FLD0).  Found by driving this UMAT along
-   !> the path in increments of 1e-4 and interpolating the crossing.
-   !>  props   [in]  material constants
-   !>  eps_max [out] the strain; huge() if not reached by a log strain of 3
-   pure function max_load_strain(props) result(eps_max)
-      real(dp), intent(in) :: props(:)
-      real(dp) :: eps_max
-      real(dp), parameter :: step = 1.0e-4_dp
-      real(dp) :: stress(2), statev(n_statev), ddsdde(2, 2), sse, spd, pnewdt, eps, g, g_old
-      integer :: i
-      stress = 0.0_dp
-      statev = 0.0_dp
-      sse = 0.0_dp
-      spd = 0.0_dp
-      eps = 0.0_dp
-      g_old = 1.0_dp
-      eps_max = huge(1.0_dp)
-      do i = 1, 30000
-         pnewdt = 1.0_dp
-         call umat(stress, statev, ddsdde, sse, spd, [eps, 0.0_dp], [step, 0.0_dp], props, &
-                   size(props), n_statev, pnewdt)
-         if (pnewdt < 1.0_dp) return
-         eps = eps + step
-         g = statev(4) - stress(1)
-         if (g <= 0.0_dp) then
-            eps_max = eps - step*g/(g - g_old)
-            return
-         end if
-         g_old = g
-      end do
-   end function max_load_strain
+   end function check_props
 end module material_j2

@@ -7,7 +7,7 @@ module model
    use section, only: n_hist, section_init
    use tools, only: tool_type
    use contact, only: n_chist, ich_position
-   use material_j2, only: max_load_strain
+   use material, only: material_type, max_load_strain
    implicit none
    private
    public :: model_type, state_type, load_type, model_init, state_init, load_init, &
@@ -18,7 +18,7 @@ module model
       real(dp) :: thickness = 0.0_dp, youngs = 0.0_dp
       real(dp), allocatable :: x(:)          ! reference node positions
       real(dp), allocatable :: z(:), wz(:)   ! Simpson stations and weights
-      real(dp), allocatable :: props(:)      ! UMAT constants
+      type(material_type) :: material        ! the material (built-in law or a user's UMAT)
       real(dp) :: max_load_strain = 0.0_dp   ! plane-strain maximum-load log strain of the material
       ! tools and contact (bead /= 'none')
       logical :: has_tools = .false.
@@ -67,22 +67,23 @@ contains
    !>  beta     [in]  mesh grading exponent (4.2)
    !>  h        [in]  thickness, mm
    !>  npt      [in]  Simpson stations through the thickness
-   !>  props    [in]  UMAT constants (props(1) = E)
-   subroutine model_init(m, n_el, length, beta, h, npt, props)
+   !>  mat      [in]  the material (mat%youngs = E)
+   subroutine model_init(m, n_el, length, beta, h, npt, mat)
       type(model_type), intent(out) :: m
       integer, intent(in) :: n_el, npt
-      real(dp), intent(in) :: length, beta, h, props(:)
+      real(dp), intent(in) :: length, beta, h
+      type(material_type), intent(in) :: mat
       m%n_el = n_el
       m%n_nodes = n_el + 1
       m%n_dof = dofs_per_node*m%n_nodes
       m%npt = npt
       m%thickness = h
-      m%youngs = props(1)
+      m%youngs = mat%youngs
       allocate (m%x(m%n_nodes), m%z(npt), m%wz(npt))
       call graded_nodes(n_el, 0.5_dp*length, beta, m%x)
       call simpson_rule(npt, h, m%z, m%wz)
-      m%props = props
-      m%max_load_strain = max_load_strain(props)
+      m%material = mat
+      m%max_load_strain = max_load_strain(mat)
    end subroutine model_init
 
    !> STATE_INIT: undeformed, stress-free state.

@@ -13,18 +13,28 @@
 !>   hist(:, ih_zbar)      current distance from the mid-surface (lagged)
 !>   hist(:, ih_stress:+1) Kirchhoff stress (tau_11, tau_33)
 !>   hist(:, ih_sse), (:, ih_spd) elastic energy and plastic dissipation densities
-!>   hist(:, ih_statev:)   the material's state variables (material_j2)
+!>   hist(:, ih_statev:)   the material's state variables (layout in
+!>                         material_j2), among them
+!>   hist(:, ih_eqps)      equivalent plastic strain (statev(isv_eqps))
+!>   hist(:, ih_eps22)     thickness log strain (statev(isv_eps22))
+!>   hist(:, ih_tangent)   continuum tangent (statev(isv_tangent))
 module section
    use kinds, only: dp
-   use material_j2, only: umat_block, n_statev
+   use material_j2, only: n_statev, isv_eqps, isv_eps22, isv_tangent
+   use material, only: material_type, material_update
    implicit none
    private
-   public :: n_hist, ih_strain, ih_zbar, ih_stress, ih_sse, ih_spd, ih_statev, &
-             section_init, section_response, section_localization, section_update_zbar
+   public :: n_hist, ih_strain, ih_zbar, ih_stress, ih_sse, ih_spd, ih_statev, ih_eqps, &
+             ih_eps22, ih_tangent, section_init, section_response, section_localization, &
+             section_update_zbar
 
    integer, parameter :: ih_strain = 1, ih_zbar = 2, ih_stress = 3, ih_sse = 5, &
                          ih_spd = 6, ih_statev = 7
    integer, parameter :: n_hist = ih_statev - 1 + n_statev
+   !> columns of the state variables that the program reads
+   integer, parameter :: ih_eqps = ih_statev - 1 + isv_eqps, &
+                         ih_eps22 = ih_statev - 1 + isv_eps22, &
+                         ih_tangent = ih_statev - 1 + isv_tangent
 
 contains
 
@@ -42,21 +52,23 @@ contains
    !> SECTION_RESPONSE: section forces and tangent for given (eps, rho), (2.16)-(2.17).
    !>  eps, rho [in]  axial and bending strains at this Gauss station
    !>  wz       [in]  Simpson weights (reference thickness), sum = h
-   !>  props    [in]  material constants passed to the UMAT
+   !>  mat      [in]  the material (built-in or a user's UMAT)
    !>  hn       [in]  converged history of the stations
    !>  h1       [out] trial history at (eps, rho)
    !>  force    [out] N = sum w tau/Lambda
    !>  moment   [out] M = sum w tau zbar/Lambda
    !>  c        [out] C(2,2): dN/deps, dN/drho = dM/deps, dM/drho (consistent)
    !>  pnewdt   [in,out] set < 1 when a fibre inverts or the material asks
-   pure subroutine section_response(eps, rho, wz, props, hn, h1, force, moment, c, pnewdt)
-      real(dp), intent(in) :: eps, rho, wz(:), props(:)
+   subroutine section_response(eps, rho, wz, mat, hn, h1, force, moment, c, pnewdt)
+      real(dp), intent(in) :: eps, rho, wz(:)
+      type(material_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :)
       real(dp), contiguous, intent(out) :: h1(:, :)
       real(dp), intent(out) :: force, moment, c(2, 2)
       real(dp), intent(inout) :: pnewdt
       integer :: k, npt
-      real(dp) :: lam(size(wz)), log_lam(size(wz)), dstran(size(wz), 2), ddsdde(size(wz), 2, 2)
+      real(dp) :: lam(size(wz)), log_lam(size(wz)), stran(size(wz), 2), dstran(size(wz), 2)
+      real(dp) :: ddsdde(size(wz), 2, 2)
       real(dp) :: zb, tau, wl, wl2
       npt = size(wz)
       force = 0.0_dp
@@ -73,13 +85,15 @@ contains
       end if
       do k = 1, npt
          log_lam(k) = log(lam(k))
+         stran(k, 1) = hn(k, ih_strain)
+         stran(k, 2) = 0.0_dp
          dstran(k, 1) = log_lam(k) - hn(k, ih_strain)
          dstran(k, 2) = 0.0_dp
       end do
       h1 = hn
-      call umat_block(npt, h1(:, ih_stress:ih_stress + 1), h1(:, ih_statev:ih_statev + n_statev - 1), &
-                      ddsdde, h1(:, ih_sse), h1(:, ih_spd), dstran, props, size(props), n_statev, &
-                      pnewdt)
+      call material_update(mat, npt, h1(:, ih_stress:ih_stress + 1), &
+                           h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
+                           h1(:, ih_spd), stran, dstran, hn(:, ih_zbar), pnewdt)
       if (pnewdt < 1.0_dp) return
       do k = 1, npt
          h1(k, ih_strain) = log_lam(k)
@@ -120,7 +134,7 @@ contains
       do k = 1, npt
          lam = exp(hist(k, ih_strain))
          zb = sqrt(12.0_dp)*hist(k, ih_zbar)/t
-         wl2 = wz(k)*(hist(k, ih_statev + 3) - hist(k, ih_stress))/(lam*lam)
+         wl2 = wz(k)*(hist(k, ih_tangent) - hist(k, ih_stress))/(lam*lam)
          c11 = c11 + wl2
          c12 = c12 + wl2*zb
          c22 = c22 + wl2*zb*zb
@@ -145,13 +159,13 @@ contains
       mid = (size(z) + 1)/2
       hist(mid, ih_zbar) = 0.0_dp
       do k = mid + 1, size(z)
-         g0 = exp(hist(k - 1, ih_statev + 1))
-         g1 = exp(hist(k, ih_statev + 1))
+         g0 = exp(hist(k - 1, ih_eps22))
+         g1 = exp(hist(k, ih_eps22))
          hist(k, ih_zbar) = hist(k - 1, ih_zbar) + 0.5_dp*(g0 + g1)*(z(k) - z(k - 1))
       end do
       do k = mid - 1, 1, -1
-         g0 = exp(hist(k + 1, ih_statev + 1))
-         g1 = exp(hist(k, ih_statev + 1))
+         g0 = exp(hist(k + 1, ih_eps22))
+         g1 = exp(hist(k, ih_eps22))
          hist(k, ih_zbar) = hist(k + 1, ih_zbar) + 0.5_dp*(g0 + g1)*(z(k) - z(k + 1))
       end do
    end subroutine section_update_zbar

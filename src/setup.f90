@@ -10,16 +10,18 @@ module setup
    use kinds, only: dp
    use errors, only: error_list, add_error
    use text, only: lower, file_exists, num
-   use deck, only: deck_type
+   use deck, only: deck_type, umat_props_given
    use controls, only: controls_type
    use model, only: model_type, model_init
-   use material_j2, only: read_curve_file, law_swift, law_voce, law_table
+   use hardening, only: read_curve_file, law_swift, law_voce, law_table, ip_law, ip_table_m
+   use material_j2, only: ip_youngs, ip_poisson, ip_r_value, check_props
+   use material, only: material_type, builtin_material, user_material, user_umat_linked
    use tools, only: tool_type, tool_gap, tool_sample
    use bead_builder, only: build_rectangular_bead
    use profile_io, only: read_profile
    implicit none
    private
-   public :: setup_run, material_constants
+   public :: setup_run, material_constants, material_of_deck
 
 contains
 
@@ -39,13 +41,13 @@ contains
       type(controls_type), intent(out) :: ctl
       type(error_list), intent(inout) :: errs
 
-      real(dp), allocatable :: props(:)
+      type(material_type) :: mat
       type(tool_type) :: upper, lower_tool
       logical :: deck_ok
       real(dp) :: h
 
       deck_ok = errs%count == 0
-      call material_constants(d, props, errs)
+      call material_of_deck(d, deck_ok, mat, errs)
       call tools_of_deck(d, deck_ok, upper, lower_tool, errs)
       if (deck_ok .and. errs%count == 0 .and. d%bead /= 'none') &
          call check_clearance(d, upper, lower_tool, errs)
@@ -53,7 +55,7 @@ contains
       if (errs%count > 0) return
 
       h = d%thickness
-      call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, props)
+      call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, mat)
       m%has_tools = d%bead /= 'none'
       if (m%has_tools) then
          m%tool(1) = upper
@@ -70,6 +72,38 @@ contains
       m%lock_depth = d%lock_depth
       m%pull_distance = d%pull_distance
    end subroutine setup_run
+
+   !> MATERIAL_OF_DECK: the material: the built-in J2/Hill law with its
+   !> constants (checked by material_j2's check_props), or a user's UMAT
+   !> with the deck's umat_props when the program was built with one.
+   !>  d        [in]     the deck
+   !>  deck_ok  [in]     .false. when the deck has errors (the constants are
+   !>                    then not checked again)
+   !>  mat      [out]    the material
+   !>  errs     [in,out] problems are appended
+   subroutine material_of_deck(d, deck_ok, mat, errs)
+      type(deck_type), intent(in) :: d
+      logical, intent(in) :: deck_ok
+      type(material_type), intent(out) :: mat
+      type(error_list), intent(inout) :: errs
+      real(dp), allocatable :: props(:)
+      character(len=:), allocatable :: msg
+      if (d%model == 'umat') then
+         if (.not. user_umat_linked()) then
+            call add_error(errs, "deck '"//trim(d%deck_file)//"', group &material, variable model: "// &
+                           "'umat' needs a user UMAT built into the program: make UMAT=path/to/umat.f90")
+         end if
+         mat = user_material(d%umat_props(1:umat_props_given(d)), d%youngs_modulus)
+         return
+      end if
+      call material_constants(d, props, errs)
+      if (deck_ok .and. errs%count == 0) then
+         msg = check_props(props, size(props))
+         if (len_trim(msg) > 0) call add_error(errs, "deck '"//trim(d%deck_file)// &
+                                               "', group &material: "//trim(msg))
+      end if
+      mat = builtin_material(props)
+   end subroutine material_of_deck
 
    !> MATERIAL_CONSTANTS: the UMAT props vector of a deck, the tabulated
    !> curve read from its file for hardening = 'table'.
@@ -97,6 +131,8 @@ contains
       case ('swift')
          props = [d%youngs_modulus, d%poissons_ratio, d%r_value, real(law_swift, dp), &
                   d%swift_k, d%swift_eps0, d%swift_n]
+         ! (the order is material_j2's ip_youngs, ip_poisson, ip_r_value and
+         ! hardening's ip_law, then the law's constants)
       case ('voce')
          props = [d%youngs_modulus, d%poissons_ratio, d%r_value, real(law_voce, dp), &
                   d%voce_sigma0, d%voce_q, d%voce_b]
@@ -112,12 +148,15 @@ contains
                npt = size(ep)
             end if
          end if
-         allocate (props(5 + 2*npt))
-         props(1:5) = [d%youngs_modulus, d%poissons_ratio, d%r_value, real(law_table, dp), &
-                       real(npt, dp)]
+         allocate (props(ip_table_m + 2*npt))
+         props(ip_youngs) = d%youngs_modulus
+         props(ip_poisson) = d%poissons_ratio
+         props(ip_r_value) = d%r_value
+         props(ip_law) = real(law_table, dp)
+         props(ip_table_m) = real(npt, dp)
          do i = 1, npt
-            props(4 + 2*i) = ep(i)
-            props(5 + 2*i) = sigma(i)
+            props(ip_table_m + 2*i - 1) = ep(i)
+            props(ip_table_m + 2*i) = sigma(i)
          end do
       case default
          props = [d%youngs_modulus, d%poissons_ratio, d%r_value, 0.0_dp, &

@@ -73,7 +73,7 @@ contains
          dofs = element_dofs(e)
          le = m%x(e + 1) - m%x(e)
          ul = s%u1(dofs)
-         call element_internal(le, ul, m%wz, m%props, s%hn(:, :, :, e), s%h1(:, :, :, e), &
+         call element_internal(le, ul, m%wz, m%material, s%hn(:, :, :, e), s%h1(:, :, :, e), &
                                re, ke, s%gp(:, :, e), pnewdt)
          if (pnewdt < 1.0_dp) return
          ! moments (slope dofs) enter the force scale divided by the thickness
