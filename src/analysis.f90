@@ -10,6 +10,7 @@ module analysis
    use kinds, only: dp, output_unit
    use errors, only: warn
    use hermite, only: n_gauss
+   use element, only: igp_strain
    use band, only: band_matrix, band_init, band_error_message
    use mesh, only: half_band, node_dof, dof_v, dof_w, dof_w_slope
    use model, only: model_type, state_type, load_type, load_init
@@ -123,7 +124,7 @@ contains
       ! at 0 on the flat sheet), N while pulling (the reaction reached so far)
       rec%last_conjugate = 0.0_dp
       if (phase == 'pull' .and. allocated(rec%reactions)) rec%last_conjugate = rec%reactions(pulled)
-      nl_old = strain_limit_indicator(m, s%gpn(1, :, :), ell)
+      nl_old = strain_limit_indicator(m, s%gpn(igp_strain, :, :), ell)
       if (phase == 'pull') then
          rec%work_pull_start = rec%work
          call energy_totals(m, s, rec%energy_pull_start)

@@ -53,6 +53,9 @@ module deck
    !> Default sheet thickness h (mm), 0.030 in.
    real(dp), parameter :: default_thickness = 0.762_dp
 
+   !> The largest mesh accepted (&sheet n_elements).
+   integer, parameter :: max_elements = 500000
+
    !> Room for a user UMAT's constants (&material umat_props).
    integer, parameter :: max_umat_props = 64
 
@@ -219,6 +222,11 @@ contains
             'must be >= 10 thickness = '//num(10.0_dp*d%thickness)//' (got '//num(d%length)//')')
       end if
       call check_int(errs, at(p, 'sheet', 'n_elements'), d%n_elements, lo=2)
+      ! about 18 kB of history per element with 21 stations: the largest
+      ! mesh is held to some 9 GB, within this class of machine's memory
+      if (d%n_elements > max_elements) call fail(errs, at(p, 'sheet', 'n_elements'), &
+         'must be <= '//itoa(max_elements)//' (the largest mesh the program holds in memory; got '// &
+         itoa(d%n_elements)//')')
       call check_real(errs, at(p, 'sheet', 'mesh_beta'), d%mesh_beta, lo=1.0_dp, hi=3.0_dp)
       call check_choice(errs, at(p, 'sheet', 'left_edge'), d%left_edge, &
                         [character(len=16) :: 'clamped', 'free'])
@@ -277,6 +285,8 @@ contains
       if (d%hardening /= 'table' .and. len_trim(d%curve_file) > 0) &
          call warn(at(p, 'material', 'curve_file')//": ignored unless hardening = 'table'")
       call check_text_length(errs, at(p, 'material', 'curve_file'), d%curve_file)
+      if (d%thickness_points > 101) call fail(errs, at(p, 'material', 'thickness_points'), &
+                                              'must be <= 101 (got '//itoa(d%thickness_points)//')')
       if (d%thickness_points < 3 .or. mod(d%thickness_points, 2) == 0) &
          call fail(errs, at(p, 'material', 'thickness_points'), &
                    'must be odd and >= 3 (got '//itoa(d%thickness_points)//')')

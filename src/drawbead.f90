@@ -184,9 +184,9 @@ contains
    subroutine finish(status, code)
       character(len=*), intent(in) :: status
       integer, intent(in) :: code
+      flush (error_unit)
       write (output_unit, '(a,i0)') '# drawbead: '//status//', exit code ', code
       flush (output_unit)
-      flush (error_unit)
       select case (code)
       case (exit_ok)
          stop

@@ -14,8 +14,12 @@ module element
    implicit none
    private
    public :: element_internal, element_gradients, v_dofs, w_dofs
+   public :: n_gp, igp_strain, igp_curvature, igp_force, igp_moment
 
    integer, parameter :: v_dofs(4) = [1, 2, 5, 6], w_dofs(4) = [3, 4, 7, 8]
+   !> what element_internal reports per Gauss point, gp(n_gp, n_gauss): the
+   !> axial strain eps, the bending strain rho, and the section forces N, M
+   integer, parameter :: igp_strain = 1, igp_curvature = 2, igp_force = 3, igp_moment = 4, n_gp = 4
 
 contains
 
@@ -49,14 +53,14 @@ contains
    !>  h1     [out] trial history
    !>  re     [out] internal force vector (8)
    !>  ke     [out] tangent (8, 8)
-   !>  gp     [out] per Gauss point: eps, rho, N, M
+   !>  gp     [out] per Gauss point: eps, rho, N, M (igp_strain ... igp_moment)
    !>  pnewdt [in,out] < 1 on return if the increment must be cut
    subroutine element_internal(le, ul, wz, mat, hn, h1, re, ke, gp, pnewdt)
       real(dp), intent(in) :: le, ul(8), wz(:)
       type(material_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :, :)
       real(dp), contiguous, intent(out) :: h1(:, :, :)
-      real(dp), intent(out) :: re(8), ke(8, 8), gp(4, n_gauss)
+      real(dp), intent(out) :: re(8), ke(8, 8), gp(n_gp, n_gauss)
       real(dp), intent(inout) :: pnewdt
       ! G = dg/dq has two entries per column: column k holds s1(k) in row
       ! row_1(k) (v' or w') and s2(k) in row row_2(k) (v'' or w''), so
@@ -75,7 +79,10 @@ contains
          call section_response(eps, rho, wz, mat, hn(:, :, ig), h1(:, :, ig), &
                                force, moment, c, pnewdt)
          if (pnewdt < 1.0_dp) return
-         gp(:, ig) = [eps, rho, force, moment]
+         gp(igp_strain, ig) = eps
+         gp(igp_curvature, ig) = rho
+         gp(igp_force, ig) = force
+         gp(igp_moment, ig) = moment
          dv = gauss_wt(ig)*le
          do j = 1, 8
             s1(j) = gm(row_1(j), j)

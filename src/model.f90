@@ -6,6 +6,7 @@ module model
    use mesh, only: graded_nodes, dofs_per_node
    use section, only: n_hist, section_init
    use tools, only: tool_type
+   use element, only: n_gp
    use contact, only: n_chist, ich_position
    use material, only: material_type, max_load_strain
    implicit none
@@ -50,7 +51,7 @@ module model
       real(dp), allocatable :: u(:), u1(:)               ! converged, trial dofs
       real(dp), allocatable :: hn(:, :, :, :), h1(:, :, :, :) ! (npt, n_hist, n_gauss, n_el)
       real(dp), allocatable :: cn(:, :, :, :), c1(:, :, :, :) ! (n_chist, n_gauss, n_el, 2)
-      real(dp), allocatable :: gp(:, :, :)               ! (eps, rho, N, M) at Gauss points, trial
+      real(dp), allocatable :: gp(:, :, :)               ! (n_gp, n_gauss, n_el): eps, rho, N, M (element's igp_*), trial
       real(dp), allocatable :: gpn(:, :, :)              ! the same, converged
       real(dp), allocatable :: indicator(:, :)           ! localization indicator, converged
       real(dp) :: shift = 0.0_dp                         ! converged lower-tool rise H
@@ -94,7 +95,7 @@ contains
       allocate (s%u(m%n_dof), s%u1(m%n_dof))
       allocate (s%hn(m%npt, n_hist, n_gauss, m%n_el))
       allocate (s%cn(n_chist, n_gauss, m%n_el, 2))
-      allocate (s%gp(4, n_gauss, m%n_el), s%gpn(4, n_gauss, m%n_el), s%indicator(n_gauss, m%n_el))
+      allocate (s%gp(n_gp, n_gauss, m%n_el), s%gpn(n_gp, n_gauss, m%n_el), s%indicator(n_gauss, m%n_el))
       s%u = 0.0_dp
       s%u1 = 0.0_dp
       do e = 1, m%n_el

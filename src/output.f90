@@ -17,8 +17,8 @@ module output
    use kinds, only: dp
    use hermite, only: n_gauss, gauss_xi, hermite_shape
    use mesh, only: element_dofs
-   use element, only: v_dofs, w_dofs
-   use section, only: ih_strain, ih_statev
+   use element, only: v_dofs, w_dofs, igp_strain, igp_curvature, igp_force, igp_moment
+   use section, only: ih_strain, ih_eps22, ih_eqps
    use model, only: model_type, state_type, gauss_position
    use tools, only: tool_sample
    use os, only: make_directory, file_create, file_write, file_write_at, file_close, file_remove
@@ -307,15 +307,16 @@ contains
             call hermite_shape(gauss_xi(ig), le, nv, dn, d2n)
             v = dot_product(nv, s%u(dofs(v_dofs)))
             w = dot_product(nv, s%u(dofs(w_dofs)))
-            eps = s%gpn(1, ig, e)
+            eps = s%gpn(igp_strain, ig, e)
             top = s%hn(m%npt, ih_strain, ig, e)
             bot = s%hn(1, ih_strain, ig, e)
-            e22 = s%hn(mid, ih_statev + 1, ig, e)
-            epmax = maxval(s%hn(:, ih_statev, ig, e))
+            e22 = s%hn(mid, ih_eps22, ig, e)
+            epmax = maxval(s%hn(:, ih_eqps, ig, e))
             write (rows(k + 1:k + row_len - 1), fmt_row) gauss_position(m, e, ig)/h, &
                (gauss_position(m, e, ig) + v)/h, &
-               w/h, eps, log(1.0_dp + eps), top, bot, e22, epmax, s%gpn(2, ig, e)*h, &
-               s%gpn(3, ig, e)/(m%youngs*h), s%gpn(4, ig, e)/(m%youngs*h*h), s%indicator(ig, e)
+               w/h, eps, log(1.0_dp + eps), top, bot, e22, epmax, s%gpn(igp_curvature, ig, e)*h, &
+               s%gpn(igp_force, ig, e)/(m%youngs*h), s%gpn(igp_moment, ig, e)/(m%youngs*h*h), &
+               s%indicator(ig, e)
             rows(k + row_len:k + row_len) = nl
             k = k + row_len
          end do

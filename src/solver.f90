@@ -11,7 +11,7 @@ module solver
    use mesh, only: element_dofs, half_band, node_dof, dof_v_slope, dof_w_slope, is_slope_dof
    use band, only: band_matrix, band_init, band_zero, band_add, band_fix_dof, band_solve
    use element, only: element_internal, v_dofs, w_dofs
-   use section, only: section_localization, section_update_zbar, ih_statev
+   use section, only: section_localization, section_update_zbar, ih_eqps
    use model, only: model_type, state_type, load_type
    use contact, only: contact_station, contact_commit, ich_active
    implicit none
@@ -157,14 +157,18 @@ contains
       real(dp), intent(in) :: tol
       type(newton_result), intent(out) :: res
       logical, intent(in), optional :: count_states
-      real(dp) :: du(size(r)), f_scale, pnewdt, rnorm, cnorm
+      real(dp) :: f_scale, pnewdt, rnorm, cnorm
+      ! on the heap: a large mesh must not overflow the stack (-fstack-arrays)
+      real(dp), allocatable :: du(:)
       integer :: it, i, info, backtrack
       real(dp) :: g0, g1, alpha
       integer :: n_contact_prev
       logical :: counting
-      logical :: plastic(m%npt, n_gauss, m%n_el), was_plastic(m%npt, n_gauss, m%n_el)
+      logical, allocatable :: plastic(:, :, :), was_plastic(:, :, :)
       counting = .false.
       if (present(count_states)) counting = count_states
+      allocate (du(size(r)))
+      allocate (plastic(m%npt, n_gauss, m%n_el), was_plastic(m%npt, n_gauss, m%n_el))
       cnorm = huge(1.0_dp)
       do it = 0, min(max_iter, max_newton_history)
          n_contact_prev = s%n_contact
@@ -206,7 +210,7 @@ contains
          end if
          res%residual(it) = rnorm
          if (counting) then
-            plastic(:, :, :) = s%h1(:, ih_statev, :, :) > s%hn(:, ih_statev, :, :)
+            plastic(:, :, :) = s%h1(:, ih_eqps, :, :) > s%hn(:, ih_eqps, :, :)
             res%plastic(it) = count(plastic)
             if (it > 0) res%switched(it) = count(plastic .neqv. was_plastic)
             was_plastic(:, :, :) = plastic

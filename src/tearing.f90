@@ -7,6 +7,7 @@ module tearing
    use kinds, only: dp
    use errors, only: warn
    use hermite, only: n_gauss, gauss_wt
+   use element, only: igp_strain, igp_curvature
    use model, only: model_type, state_type, gauss_position
    use record, only: run_record
    implicit none
@@ -36,14 +37,16 @@ contains
       real(dp), intent(inout) :: nl_old(:)
       type(run_record), intent(inout) :: rec
       logical, intent(out) :: paper_met
-      real(dp) :: frac, nl_new(size(nl_old))
+      real(dp) :: frac
+      real(dp), allocatable :: nl_new(:), g_old(:), g_new(:)
       integer :: k_cr
       paper_met = .false.
       ! the paper's pointwise criterion (3.1): the first Gauss station whose
-      ! indicator crosses zero
+      ! indicator crosses zero (the stations as one list, element by element)
       if (.not. rec%localized) then
-         call first_crossing(reshape(ind_old, [size(ind_old)]), &
-                             reshape(s%indicator, [size(ind_old)]), frac, k_cr)
+         g_old = pack(ind_old, .true.)
+         g_new = pack(s%indicator, .true.)
+         call first_crossing(g_old, g_new, frac, k_cr)
          if (k_cr > 0) then
             rec%localized = .true.
             rec%loc_phase = phase
@@ -54,7 +57,7 @@ contains
       end if
       ! the mesh-objective one: the mid-surface strain averaged over ell
       ! reaches the plane-strain maximum-load strain
-      nl_new = strain_limit_indicator(m, s%gpn(1, :, :), ell)
+      nl_new = strain_limit_indicator(m, s%gpn(igp_strain, :, :), ell)
       if (.not. rec%nl_localized) then
          call first_crossing(nl_old, nl_new, frac, k_cr)
          if (k_cr > 0) then
@@ -89,8 +92,8 @@ contains
       character(len=200) :: msg
       if (rec%folded) return
       h = m%thickness
-      fold_at = maxloc(abs(s%gpn(2, :, :)))
-      rho_h = abs(s%gpn(2, fold_at(1), fold_at(2)))*h
+      fold_at = maxloc(abs(s%gpn(igp_curvature, :, :)))
+      rho_h = abs(s%gpn(igp_curvature, fold_at(1), fold_at(2)))*h
       if (rho_h <= fold_curvature) return
       rec%folded = .true.
       rec%fold_phase = phase
@@ -155,10 +158,12 @@ contains
    pure function strain_limit_indicator(m, eps, ell) result(g)
       type(model_type), intent(in) :: m
       real(dp), intent(in) :: eps(:, :), ell
-      real(dp) :: g(size(eps))
-      real(dp) :: xs(size(eps)), pw(0:size(eps)), pg(0:size(eps)), wt
+      real(dp), allocatable :: g(:)
+      real(dp), allocatable :: xs(:), pw(:), pg(:)
+      real(dp) :: wt
       integer :: e, ig, k, lo, hi, n
       n = size(eps)
+      allocate (xs(n), pw(0:n), pg(0:n), g(n))
       pw(0) = 0.0_dp
       pg(0) = 0.0_dp
       do e = 1, m%n_el
