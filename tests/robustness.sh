@@ -1,0 +1,117 @@
+#!/bin/bash
+# tests/robustness.sh -- the program never gives a silent wrong answer, a
+# crash, or a lost or stale result (issue: no silent wrong answer):
+#  - command line: exactly one deck, -o needs a value, unknown options,
+#    --help and --version;
+#  - the output directory belongs to the run: an earlier run's files are
+#    removed, summary.txt says status = running while the run goes;
+#  - SIGTERM stops the run at a converged increment: status = interrupted,
+#    exit 4, every file so far on disk;
+#  - a failed write (a file-size limit, ulimit -f) stops the run: exit 3,
+#    the file and the system's reason named, status never completed;
+#  - -o is taken literally, no shell: '$(touch x)' is a directory name;
+#  - a large mesh (12000 elements) runs (no stack overflow);
+#  - the log ends with the status and the exit code.
+# Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
+set -u
+cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
+bin=$(realpath "${1:-bin/drawbead}")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+ok() { echo "ok   $*"; }
+bad() { echo "FAIL $*"; failures=$((failures + 1)); }
+
+# expect STATUS PATTERN DESCRIPTION -- COMMAND...: exit status and a
+# pattern in stdout+stderr
+expect() {
+    local want=$1 pattern=$2 what=$3
+    shift 4
+    "$@" >"$work/out" 2>&1
+    local got=$?
+    if ((got != want)); then
+        bad "$what: exit $got, expected $want"; sed 's/^/    /' "$work/out" | head -5
+    elif ! grep -qF -- "$pattern" "$work/out"; then
+        bad "$what: no '$pattern' in the output"; sed 's/^/    /' "$work/out" | head -5
+    else
+        ok "$what (exit $got)"
+    fi
+}
+
+deck=tests/decks/strip_tension.nml
+expect 0 'usage: drawbead' '--help prints the usage' -- "$bin" --help
+expect 0 'drawbead ' '--version prints the version' -- "$bin" --version
+expect 1 'more than one deck' 'two decks are refused' -- "$bin" "$deck" "$deck"
+expect 1 'unknown option --fast' 'an unknown option is refused' -- "$bin" "$deck" --fast
+expect 1 'needs a directory' '-o without a value is refused' -- "$bin" "$deck" -o
+expect 1 'no deck given' 'no deck is refused' -- "$bin"
+expect 1 'no namelist group of the program' 'an empty file is not a deck' -- "$bin" /dev/null
+expect 1 'text outside any namelist group' 'a profile file is not a deck' -- \
+    "$bin" input/profiles/round_upper.prof
+expect 1 'text outside any namelist group' 'a gnuplot script is not a deck' -- \
+    "$bin" scripts/plot_lock.gp
+expect 1 'text outside any namelist group' 'a binary file is not a deck' -- "$bin" "$bin"
+
+# the output directory belongs to the run
+mkdir -p "$work/stale"
+printf 'status = completed\n' >"$work/stale/summary.txt"
+printf 'stale\n' >"$work/stale/snapshots.dat"
+printf 'mine\n' >"$work/stale/notes.txt"
+"$bin" "$deck" -o "$work/stale" >"$work/log" 2>&1
+if [[ -e $work/stale/snapshots.dat ]]; then
+    bad "an earlier run's snapshots.dat was left beside the new results"
+elif [[ ! -e $work/stale/notes.txt ]]; then
+    bad "a file that is not the program's was removed"
+else
+    ok "an earlier run's result files are removed, other files kept"
+fi
+tail -n 1 "$work/log" | grep -q '^# drawbead: done, exit code 0$' &&
+    ok "the log ends with the status and the exit code" ||
+    bad "the log's last line is not the status: $(tail -n 1 "$work/log")"
+
+# SIGTERM: status running while the run goes, interrupted after
+"$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/term" >"$work/term.log" 2>&1 &
+pid=$!
+for _ in $(seq 100); do
+    grep -q 'increments = *[1-9]' "$work/term/summary.txt" 2>/dev/null && break
+    sleep 0.02
+done
+if grep -q '^status = running$' "$work/term/summary.txt" 2>/dev/null; then
+    ok "summary.txt says status = running during the run"
+else
+    bad "no status = running in summary.txt during the run"
+fi
+kill -TERM "$pid"
+wait "$pid"
+status=$?
+if ((status == 4)) && grep -q '^status = interrupted$' "$work/term/summary.txt" &&
+    [[ -s $work/term/lock.dat && -s $work/term/strain_lock.dat ]]; then
+    ok "SIGTERM: exit 4, status = interrupted, results so far on disk"
+else
+    bad "SIGTERM: exit $status, summary: $(sed -n 2p "$work/term/summary.txt")"
+fi
+
+# a write that fails (file-size limit): exit 3, the file and the reason
+(ulimit -f 8; "$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/full" >"$work/full.log" 2>&1)
+status=$?
+if ((status == 3)) && grep -q 'cannot write .*/lock.dat: File too large' "$work/full.log" &&
+    ! grep -q '^status = completed' "$work/full/summary.txt"; then
+    ok "a failed write: exit 3, names the file and the reason, status not completed"
+else
+    bad "a failed write: exit $status"; tail -n 3 "$work/full.log" | sed 's/^/    /'
+fi
+
+# no shell: the directory name is taken literally
+(cd "$work" && "$bin" "$OLDPWD/$deck" -o "\$(touch x)" >/dev/null 2>&1)
+if [[ -d "$work/\$(touch x)" && ! -e $work/x ]]; then
+    ok "-o '\$(touch x)' makes that directory and runs nothing"
+else
+    bad "-o '\$(touch x)' was handed to a shell"
+fi
+
+# a large mesh runs (no stack overflow)
+printf '&sheet n_elements = 12000 /\n&loading pull_distance = 0.02 /\n' >"$work/big.nml"
+expect 0 'done, exit code 0' 'a 12000-element mesh runs' -- "$bin" "$work/big.nml" -o "$work/big"
+
+echo "robustness: $failures failed"
+((failures == 0))
