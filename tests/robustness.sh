@@ -65,9 +65,11 @@ elif [[ ! -e $work/stale/notes.txt ]]; then
 else
     ok "an earlier run's result files are removed, other files kept"
 fi
-tail -n 1 "$work/log" | grep -q '^# drawbead: done, exit code 0$' &&
-    ok "the log ends with the status and the exit code" ||
+if tail -n 1 "$work/log" | grep -q '^# drawbead: done, exit code 0$'; then
+    ok "the log ends with the status and the exit code"
+else
     bad "the log's last line is not the status: $(tail -n 1 "$work/log")"
+fi
 
 # SIGTERM: status running while the run goes, interrupted after
 "$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/term" >"$work/term.log" 2>&1 &
