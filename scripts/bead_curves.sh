@@ -28,7 +28,7 @@
 # The forces are in N/mm (E h of each run times the normalized values).
 # Only runs that completed or localized are used (the depths at which the
 # sheet localized are named in the headers); the others are reported on
-# stderr. The restraining force includes friction: see README.md for how
+# stderr. The restraining force includes friction: see docs/user-guide.md for how
 # to use the curves.
 #
 # Options:

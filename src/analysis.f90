@@ -5,7 +5,7 @@
 !> Phase 'lock': the lower tool rises by H (load parameter), right edge held.
 !> Phase 'pull': tools held at H = lock depth, right edge pulled by delta.
 !> Left edge clamped (v = w = w' = 0) or free (w = w' = 0, axial force
-!> -back_tension applied).  docs/theory.md: problem, solution.
+!> -back_tension applied).  docs/theory.md §1, §8.1.
 module analysis
    use kinds, only: dp, output_unit
    use errors, only: warn
@@ -199,7 +199,7 @@ contains
          pen = 0.0_dp
          if (m%has_tools) pen = max(0.0_dp, maxval(s%cn(ich_penetration, :, :, :)))/h
          ! penetrations above 0.05h mean the penalty is too soft for the
-         ! forces at hand (docs/theory.md, contact): warn once per run
+         ! forces at hand (docs/theory.md §5): warn once per run
          if (pen > 0.05_dp .and. rec%max_penetration <= 0.05_dp) then
             write (msg, '(a,es9.3,a,es10.3,a)') 'penetration ', pen, 'h > 0.05h at load/h = ', &
                p/h, ' in '//phase//': raise &tools penalty'

@@ -19,7 +19,7 @@ module bead_builder
 
 contains
 
-   !> BUILD_RECTANGULAR_BEAD: the paper's flat bead (Fig. 3, DESIGN section 5)
+   !> BUILD_RECTANGULAR_BEAD: the paper's flat bead (Fig. 3, docs/theory.md §5)
    !> as centreline surfaces, both tools at rest (H = 0), centred on x = 0.
    !>  r1, r2  [in]  corner radii of the male (lower) and female (upper), mm
    !>  b1      [in]  half-width of the male's flat top, mm (>= 0)

@@ -1,5 +1,5 @@
 !> contact -- penalty contact and friction of one sheet station on one tool,
-!> (2.18)-(2.23), DESIGN §5-§6.
+!> (2.18)-(2.23), docs/theory.md §5-§6.
 !>
 !> A station at current position p (a Gauss point of the centreline) penetrates
 !> a tool by d > 0.  With n the tool's unit normal toward the sheet and t its
@@ -23,7 +23,8 @@
 
 module contact
    use kinds, only: dp
-   use tools, only: tool_type, tool_gap
+   use tools, only: tool_type
+   use tool_distance, only: tool_gap
    use friction, only: friction_law
    implicit none
    private
@@ -97,7 +98,7 @@ contains
       f = pn*n
       kf = -dpn*outer(n, n) + pn*curv*outer(t, t)
       ! friction acts once the station's contact history has started, i.e.
-      ! it was in contact at the last converged state (DESIGN §6)
+      ! it was in contact at the last converged state (docs/theory.md §6)
       if (mu <= 0.0_dp .or. chn(ich_active) < 0.5_dp) return
       ! friction: slip since the last converged state, measured along t;
       ! d(ds)/dp = t (1 - curv n.(p - p_old)) because t turns on an arc

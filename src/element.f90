@@ -3,7 +3,7 @@
 !> Element dofs, node by node: (v1, v1', w1, w1', v2, v2', w2, w2').
 !> Internal virtual work per unit reference length N d(eps) + M d(rho) (2.8)-(2.10):
 !>   r = int (N B_eps + M B_rho) ds
-!>   K = int (B^T C B + N d2eps/dq2 + M d2rho/dq2) ds        (DESIGN §2)
+!>   K = int (B^T C B + N d2eps/dq2 + M d2rho/dq2) ds        (docs/theory.md §2)
 !> with B = d(eps, rho)/dq and 4-point Gauss quadrature (paper §4).
 module element
    use kinds, only: dp

@@ -5,7 +5,7 @@
 !> The tangential traction is t_t = -mu t_n f(u_T) (2.21), i.e. with the
 !> penalty normal force k d the friction force magnitude is mu k d f; its
 !> direction and the slid distance u_T (2.22) are the contact module's
-!> business (DESIGN section 6).  u_T is measured along the sense of first
+!> business (docs/theory.md §6).  u_T is measured along the sense of first
 !> sliding, so it grows from 0; u_T^m is the largest committed u_T (the
 !> reversal point).  The three branches of (2.21):
 !>   (1) u_T >= u_T^m                      f = phi(u_T)

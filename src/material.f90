@@ -198,7 +198,7 @@ contains
    !> MAX_LOAD_STRAIN: the axial log strain at maximum load in plane-strain
    !> uniaxial tension (width strain held, sigma22 = 0), where the continuum
    !> tangent statev(isv_tangent) falls to the stress, d tau/d eps = tau
-   !> (DESIGN §7): the sheet's forming limit in plane strain (FLD0).  Found
+   !> (docs/theory.md §7): the sheet's forming limit in plane strain (FLD0).  Found
    !> by driving the material (built-in or user) along the path in
    !> increments of 1e-4 and interpolating the crossing.
    !>  mat     [in]  the material

@@ -1,5 +1,5 @@
 !> material_j2 -- the built-in elasto-plastic material (J2 / Hill 1948) for
-!> one through-thickness station of a plane-strain sheet (DESIGN §4), as a
+!> one through-thickness station of a plane-strain sheet (docs/theory.md §4), as a
 !> UMAT with the Abaqus argument list and as a vectorized block routine.
 !>
 !> Purpose
@@ -16,7 +16,7 @@
 !>     - hardening: Swift, Voce, or a piecewise-linear table (module
 !>       hardening).
 !>   Elastic predictor; beyond the yield surface backward-Euler return
-!>   mapping (DESIGN §4)
+!>   mapping (docs/theory.md §4)
 !>     sigma = sigma_trial - dp D n(sigma),   sbar(sigma) = sigma_y(ep_n + dp),
 !>     n = d sbar / d sigma = P sigma / sbar,  P = [[1, -r], [-r, 1]], r = R/(1+R),
 !>   and its consistent (algorithmic) tangent.
@@ -338,7 +338,7 @@ contains
          xn1 = e_ps*f1 + d12*f2
          xn2 = d12*f1 + e_ps*f2
          ct11(j) = e_ps - xn1**2/(f1*xn1 + f2*xn2 + h_end(j))
-         ! Thickness strain, DESIGN §4: elastic part from sigma22 = 0, plastic
+         ! Thickness strain, docs/theory.md §4: elastic part from sigma22 = 0, plastic
          ! part from plastic incompressibility of (A.3):
          ! d eps22 = -(nu/E)(d s11 + d s33) - d eps11p - d eps33p.
          dsig1 = sig1(j) - sig_n1(j)
@@ -356,7 +356,7 @@ contains
 
       ! Every point as if elastic (the plastic ones are overwritten below).
       ! Thickness strain: plane stress sigma22 = 0 gives
-      ! d eps22 = -(nu/E)(d s11 + d s33) (DESIGN §4, no plastic part).
+      ! d eps22 = -(nu/E)(d s11 + d s33) (docs/theory.md §4, no plastic part).
       do k = 1, nblock
          statev(k, isv_eps22) = statev(k, isv_eps22) &
                                 - nu/e_mod*(sig_tr1(k) - stress(k, 1) + sig_tr2(k) - stress(k, 2))

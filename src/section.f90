@@ -1,8 +1,8 @@
 !> section -- through-thickness integration of the sheet: N, M and C (2.16), (2.17).
 !>
 !> A Gauss station of the shell carries npt material points (Simpson stations,
-!> paper §4) at reference distance z_k, current distance zbar_k (lagged, DESIGN
-!> §3).  Fibre stretch Lambda_k = 1 + eps + zbar_k rho; the material gets the
+!> paper §4) at reference distance z_k, current distance zbar_k (lagged,
+!> docs/theory.md §3).  Fibre stretch Lambda_k = 1 + eps + zbar_k rho; the material gets the
 !> log-strain increment ln(Lambda_k/Lambda_k,old) with the width strain held.
 !>
 !> The history of the section is hist(npt, n_hist), one row per material point
@@ -111,7 +111,7 @@ contains
    end subroutine section_response
 
    !> SECTION_LOCALIZATION: localization indicator of a converged section (3.1),
-   !> DESIGN §7: the smallest eigenvalue of the section tangent built with the
+   !> docs/theory.md §7: the smallest eigenvalue of the section tangent built with the
    !> continuum moduli (plastic where loading, elastic where not), scaled by
    !> its elastic values with the current thickness t,
    !>   c = [C11/(E h), sqrt(12) C12/(E h t); sqrt(12) C12/(E h t), 12 C22/(E h t^2)].
@@ -147,7 +147,7 @@ contains
 
    !> SECTION_UPDATE_ZBAR: current station distances from the converged thickness
    !> strains: d zbar/dz = exp(eps_22), trapezoid rule from the mid-surface
-   !> station outward (DESIGN §3).  Called once per converged increment, so zbar
+   !> station outward (docs/theory.md §3).  Called once per converged increment, so zbar
    !> is lagged one increment.
    !>  z     [in]  reference station positions (odd count, mid station at 0)
    !>  hist  [in,out] history; column ih_zbar is rewritten

@@ -16,7 +16,8 @@ module setup
    use hardening, only: read_curve_file, law_swift, law_voce, law_table, ip_law, ip_table_m
    use material_j2, only: ip_youngs, ip_poisson, ip_r_value, check_props
    use material, only: material_type, builtin_material, user_material, user_umat_linked
-   use tools, only: tool_type, tool_gap, tool_sample
+   use tools, only: tool_type, tool_sample
+   use tool_distance, only: tool_gap
    use bead_builder, only: build_rectangular_bead
    use profile_io, only: read_profile
    implicit none

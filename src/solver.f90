@@ -1,4 +1,4 @@
-!> solver -- global assembly, Newton-Raphson per increment, commit (DESIGN §8).
+!> solver -- global assembly, Newton-Raphson per increment, commit (docs/theory.md §8).
 !>
 !> The residual is r = f_int(u) - f_ext: internal forces of the elements plus
 !> contact and friction forces of the tools, minus dead loads and the end moment.

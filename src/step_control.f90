@@ -3,7 +3,7 @@
 !> an increment whose force jumped, grow after easy convergence, shrink
 !> after a hard one, and resolve fast changes of the phase's force (the
 !> closing binder's final squeeze, the first slip over a radius) at about a
-!> target relative change per increment (docs/theory.md, solution).
+!> target relative change per increment (docs/theory.md §8.3).
 module step_control
    use kinds, only: dp
    use controls, only: controls_type

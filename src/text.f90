@@ -10,6 +10,8 @@
 module text
    use, intrinsic :: iso_fortran_env, only: iostat_end, iostat_eor
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
+   use, intrinsic :: ieee_exceptions, only: ieee_usual, ieee_get_halting_mode, &
+      ieee_set_halting_mode, ieee_set_flag
    use kinds, only: dp
    implicit none
    private
@@ -154,12 +156,20 @@ contains
       character(len=*), intent(in) :: tok
       real(dp), intent(out) :: x
       integer :: ios
+      logical :: halting(size(ieee_usual))
       x = 0.0_dp
       parse_real = .false.
       if (len_trim(tok) == 0) return
       if (verify(trim(adjustl(tok)), '0123456789+-.eEdD') /= 0) return
       if (scan(tok, '0123456789') == 0) return
+      ! 1e999 overflows inside the run-time library's conversion: it must
+      ! become Infinity (rejected below), not a trap in a build with
+      ! -ffpe-trap=overflow
+      call ieee_get_halting_mode(ieee_usual, halting)
+      call ieee_set_halting_mode(ieee_usual, .false.)
       read (tok, *, iostat=ios) x
+      call ieee_set_flag(ieee_usual, .false.)
+      call ieee_set_halting_mode(ieee_usual, halting)
       parse_real = ios == 0
       if (parse_real) parse_real = ieee_is_finite(x)
       if (.not. parse_real) x = 0.0_dp
