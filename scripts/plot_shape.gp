@@ -33,7 +33,7 @@
 # centreline, along its normal; the tools are their physical surfaces (the
 # tools files hold the surfaces the centreline touches, offset by h/2
 # toward the sheet). The polygons come from scripts/shape_polygons.py
-# (python3, next to this script). Where the paper's pointwise criterion
+# (python3, next to this script), read through pipes. Where the paper's pointwise criterion
 # was met in the state drawn, the Gauss station s* is marked with a cross.
 # Example:
 #   gnuplot -c scripts/plot_shape.gp out/fig5a_beadA_steel pull shape.png
@@ -140,21 +140,16 @@ if (tear) {
 }
 
 # the sheet with its thickness and the tools' surfaces as polygons, and the
-# window (the bead, the tearing point, the sheet's height) from the data
-helper = system("dirname '" . ARG0 . "'") . '/shape_polygons.py'
-tmp = system('mktemp -d')
-if (tmp eq '') {
-    print 'plot_shape.gp: cannot make a temporary directory'
-    exit status 1
-}
+# window (the bead, the tearing point, the sheet's height) from the data,
+# read from scripts/shape_polygons.py through pipes
+helper = "python3 '" . system("dirname '" . ARG0 . "'") . "/shape_polygons.py' "
 hargs = sprintf("--margin=%g --pad=%g", margin, pad)
 if (tear) { hargs = hargs . sprintf(" --keep=%.10g", xtear) }
 if (full) { hargs = hargs . ' --full' }
-toolarg = has_tools ? "'" . ftools . "' " : ''
-win = system("python3 '" . helper . "' " . hargs . " '" . fsheet . "' " . toolarg . "'" . tmp . "' || echo failed")
+hfiles = " '" . fsheet . "'" . (has_tools ? " '" . ftools . "'" : '')
+win = system(helper . hargs . hfiles . ' || echo failed')
 if (words(win) != 5) {
-    print 'plot_shape.gp: ' . helper . ' failed: ' . win
-    system("rm -rf '" . tmp . "'")
+    print 'plot_shape.gp: shape_polygons.py failed: ' . win
     exit status 1
 }
 xmin = real(word(win, 1))
@@ -162,9 +157,9 @@ xmax = real(word(win, 2))
 ymin = real(word(win, 3))
 ymax = real(word(win, 4))
 epmax = real(word(win, 5))
-fpoly = tmp . '/sheet.dat'
-fline = tmp . '/outline.dat'
-ftool = tmp . '/tools.dat'
+fpoly = '< ' . helper . '--print=sheet' . hfiles
+fline = '< ' . helper . '--print=outline' . hfiles
+ftool = '< ' . helper . '--print=tools' . hfiles
 
 # the canvas: its width, and a height that holds the window at equal
 # scales with nothing to spare; the margins (title; axis labels and the
@@ -196,12 +191,13 @@ if (psize eq '') {
     if (ext ne '.pdf') { ch = ceil(ch) }
     psize = sprintf('%g,%g', cw, ch)
 } else {
-    cw = real(word(psize, 1))
-    if (strstrt(psize, ',') > 0) {
-        ch = real(psize[strstrt(psize, ',') + 1:])
-    } else {
-        ch = cw
+    comma = strstrt(psize, ',')
+    if (comma == 0) {
+        print "plot_shape.gp: --size=W,H, not '" . psize . "'"
+        exit status 1
     }
+    cw = real(psize[1:comma - 1])
+    ch = real(psize[comma + 1:])
 }
 eval 'set terminal ' . term . ' size ' . psize
 set output out
@@ -216,6 +212,12 @@ set bmargin at screen mbottom / ch
 set size ratio -1
 set xrange [xmin:xmax]
 set yrange [ymin:ymax]
+# y tics at least 24 pixels (1/3 inch) apart: a step of 1, 2 or 5 times a
+# power of 10
+ystep = 24.0 / (ext eq '.pdf' ? 72.0 : 1.0) * (xmax - xmin) / (cw - mleft - mright)
+ydec = 10.0**floor(log10(ystep))
+ystep = (ystep <= ydec) ? ydec : ((ystep <= 2 * ydec) ? 2 * ydec : ((ystep <= 5 * ydec) ? 5 * ydec : 10 * ydec))
+set ytics ystep
 set tics front
 set grid front lc rgb '#80ffffff' lw 0.5
 set mxtics 2
@@ -246,8 +248,9 @@ if (tear) {
 }
 
 if (has_tools) {
-    plot ftool index 0 using 1:2 with filledcurves closed fc rgb tool_fill fs solid 1.0 border lc rgb tool_edge lw 1.5, \
-         ftool index 1 using 1:2 with filledcurves closed fc rgb tool_fill fs solid 1.0 border lc rgb tool_edge lw 1.5, \
+    # both tools in one pass (each block its own polygon): a pipe is read
+    # once, to its end
+    plot ftool using 1:2 with filledcurves closed fc rgb tool_fill fs solid 1.0 border lc rgb tool_edge lw 1.5, \
          fpoly using 1:2:3 with filledcurves closed fc palette z fs solid 1.0 noborder, \
          fline using 1:2 with lines lw 1 lc rgb '#000000'
 } else {
@@ -255,4 +258,3 @@ if (has_tools) {
          fline using 1:2 with lines lw 1 lc rgb '#000000'
 }
 unset output
-system("rm -rf '" . tmp . "'")

@@ -3,8 +3,8 @@
 physical tool surfaces as polygons, for scripts/plot_shape.gp.
 
 Usage:
-    scripts/shape_polygons.py [--margin=M] [--keep=X] ... [--pad=P] [--full]
-                              STRAIN.dat [TOOLS.dat] OUTDIR
+    scripts/shape_polygons.py [--print=WHAT] [--margin=M] [--keep=X] ...
+                              [--pad=P] [--full] STRAIN.dat [TOOLS.dat]
 
     STRAIN.dat  a strain file of drawbead (strain_lock.dat, strain_pull.dat,
                 ...): columns 2:3 the centreline x/h, y/h of each Gauss
@@ -14,31 +14,32 @@ Usage:
     TOOLS.dat   optional: the tools file of the same state (tools_lock.dat
                 or tools_pull.dat; block 0 the upper tool's centreline
                 surface, block 1 the lower tool's)
-    OUTDIR      where the polygon files are written (it must exist)
+    --print     what to write on standard output (default window):
+        window   one line XMIN XMAX YMIN YMAX EPMAX: the window to draw
+                 (x/h and y/h) and the largest equivalent plastic strain of
+                 the sheet (0 if it stayed elastic)
+        sheet    one quadrilateral per pair of neighbouring stations
+                 (blocks separated by a blank line, each closed), columns
+                 x/h, y/h and the mean equivalent plastic strain of the two
+                 stations: plot with filledcurves closed fc palette z
+        outline  the sheet's outline (upper face left to right, lower face
+                 back), closed
+        tools    (with TOOLS.dat) block 0 the upper tool, block 1 the lower
+                 tool (separated by two blank lines), each its physical
+                 surface (the centreline surface offset by h/2 away from
+                 the sheet) closed far above or below the window: plot
+                 with filledcurves closed
     --margin    the window is the bead (where a tool leaves its flat
                 binder level) and M thicknesses on each side (default 3);
                 without tools, the whole sheet and M on each side
     --keep      an abscissa x/h the window must hold (with 2h to spare),
                 e.g. the tearing point; may be given several times
-    --full      the window is the whole sheet and M on each side
     --pad       the window's height is the sheet's, within the window, and
                 P thicknesses above and below (default 1.5)
+    --full      the window is the whole sheet and M on each side
 
-Writes, in OUTDIR:
-    sheet.dat    one quadrilateral per pair of neighbouring stations
-                 (blocks separated by a blank line, each closed), columns
-                 x/h, y/h and the mean equivalent plastic strain of the two
-                 stations: plot with filledcurves closed fc palette z
-    outline.dat  the sheet's outline (upper face left to right, lower face
-                 back), closed
-    tools.dat    with TOOLS.dat: block 0 the upper tool, block 1 the lower
-                 tool, each the physical surface (the centreline surface
-                 offset by h/2 away from the sheet) closed far above or
-                 below the window: plot with filledcurves closed
-and prints one line on standard output:
-    XMIN XMAX YMIN YMAX EPMAX
-the window (x/h and y/h) and the largest equivalent plastic strain of the
-sheet (0 if it stayed elastic).
+gnuplot reads the output through a pipe ('< python3 ...'), so that no
+temporary file is left behind.
 
 All lengths are in units of the initial thickness h: the current thickness
 of a station is exp(column 8), laid off by half each side of the
@@ -50,7 +51,6 @@ rows; 2 on a usage error.
 
 import bisect
 import math
-import os
 import sys
 
 # the binder level is where a tool is flat; a tool point further than this
@@ -200,8 +200,72 @@ def bead_span(block):
     return (min(xs), max(xs)) if xs else None
 
 
+def sheet_faces(rows):
+    """The upper and lower faces of the sheet, lists of (x, y), from the
+    strain file's ROWS: the current thickness exp(column 8) laid off by
+    half each side of the centreline along its normal."""
+    xs = [r[1] for r in rows]
+    ys = [r[2] for r in rows]
+    half = [0.5 * math.exp(r[7]) for r in rows]
+    ns = normals(xs, ys)
+    top = [(x + t * nx, y + t * ny) for x, y, t, (nx, ny) in zip(xs, ys, half, ns)]
+    bot = [(x - t * nx, y - t * ny) for x, y, t, (nx, ny) in zip(xs, ys, half, ns)]
+    return top, bot
+
+
+def write_tools(f, blocks):
+    """Write the physical surfaces of the tool BLOCKS (upper, lower) on F
+    as closed polygons."""
+    for k, (block, side) in enumerate(zip(blocks, (1.0, -1.0))):
+        tx = [p[0] for p in block]
+        ty = [p[1] for p in block]
+        # the upper tool lies above the sheet: its surface is the
+        # centreline surface moved up (left normal, x increasing)
+        if tx[-1] < tx[0]:
+            tx.reverse()
+            ty.reverse()
+        if all(b >= a for a, b in zip(tx, tx[1:])):
+            px, py = erode(tx, ty, 0.5, side)
+        else:
+            # a tool that is no function of x (an overhang)
+            px, py = mitre(tx, ty, 0.5 * side)
+        px += [px[-1], px[0]]
+        py += [side * FAR, side * FAR]
+        write_polygon(f, px, py)
+        if k == 0:
+            f.write("\n")
+
+
+def window(top, bot, blocks, margin, pad, keep, full):
+    """The window (XMIN, XMAX, YMIN, YMAX) around the sheet's faces TOP and
+    BOT: the bead of the tool BLOCKS (None: no tools) or, if FULL or
+    without tools, the sheet, MARGIN on each side, widened to hold each x
+    of KEEP with 2 to spare; the sheet's height in it and PAD."""
+    span = None
+    for block in blocks or []:
+        s = bead_span(block)
+        if s is not None:
+            span = s if span is None else (min(span[0], s[0]), max(span[1], s[1]))
+    sheet_x = [p[0] for p in top + bot]
+    if span is None or full:
+        span = (min(sheet_x), max(sheet_x))
+    xmin = span[0] - margin
+    xmax = span[1] + margin
+    for k in keep:
+        xmin = min(xmin, k - 2.0)
+        xmax = max(xmax, k + 2.0)
+    # never wider than the sheet and its margin
+    xmin = max(xmin, min(sheet_x) - margin)
+    xmax = min(xmax, max(sheet_x) + margin)
+    inside = [p[1] for p in top + bot if xmin <= p[0] <= xmax]
+    if not inside:
+        inside = [p[1] for p in top + bot]
+    return xmin, xmax, min(inside) - pad, max(inside) + pad
+
+
 def main(argv):
-    """Parse ARGV, write the polygon files, print the window."""
+    """Parse ARGV and print what --print asks for."""
+    what = "window"
     margin = 3.0
     pad = 1.5
     keep = []
@@ -209,7 +273,9 @@ def main(argv):
     files = []
     for a in argv:
         try:
-            if a.startswith("--margin="):
+            if a.startswith("--print="):
+                what = a[8:]
+            elif a.startswith("--margin="):
                 margin = float(a[9:])
             elif a.startswith("--pad="):
                 pad = float(a[6:])
@@ -223,88 +289,43 @@ def main(argv):
                 files.append(a)
         except ValueError:
             die(f"not a number in '{a}'", 2)
-    if len(files) not in (2, 3):
-        die("usage: shape_polygons.py [--margin=M] [--keep=X] ... [--pad=P] "
-            "[--full] STRAIN.dat [TOOLS.dat] OUTDIR", 2)
+    if len(files) not in (1, 2):
+        die("usage: shape_polygons.py [--print=window|sheet|outline|tools] "
+            "[--margin=M] [--keep=X] ... [--pad=P] [--full] STRAIN.dat [TOOLS.dat]", 2)
+    if what not in ("window", "sheet", "outline", "tools"):
+        die(f"--print: not window, sheet, outline or tools: '{what}'", 2)
     if not (math.isfinite(margin) and math.isfinite(pad)) or \
             not all(math.isfinite(k) for k in keep):
         die("--margin, --pad and --keep must be finite numbers", 2)
-    fstrain, outdir = files[0], files[-1]
-    ftools = files[1] if len(files) == 3 else None
-    if not os.path.isdir(outdir):
-        die(f"no directory '{outdir}'", 2)
+    if what == "tools" and len(files) == 1:
+        die("--print=tools needs TOOLS.dat", 2)
 
-    rows = [r for b in read_blocks(fstrain, 9) for r in b]
+    rows = [r for b in read_blocks(files[0], 9) for r in b]
     if len(rows) < 2:
-        die(f"'{fstrain}': fewer than two stations", 1)
-    xs = [r[1] for r in rows]
-    ys = [r[2] for r in rows]
-    half = [0.5 * math.exp(r[7]) for r in rows]
-    eps = [r[8] for r in rows]
-    ns = normals(xs, ys)
-    top = [(x + t * nx, y + t * ny) for x, y, t, (nx, ny) in zip(xs, ys, half, ns)]
-    bot = [(x - t * nx, y - t * ny) for x, y, t, (nx, ny) in zip(xs, ys, half, ns)]
+        die(f"'{files[0]}': fewer than two stations", 1)
+    top, bot = sheet_faces(rows)
+    blocks = None
+    if len(files) == 2:
+        blocks = read_blocks(files[1], 2)
+        if len(blocks) != 2 or min(len(b) for b in blocks) < 2:
+            die(f"'{files[1]}': not two tool blocks", 1)
 
-    with open(os.path.join(outdir, "sheet.dat"), "w", encoding="utf-8") as f:
-        f.write("# the sheet: one quadrilateral per pair of stations; "
-                "x/h y/h equivalent plastic strain\n")
+    out = sys.stdout
+    if what == "window":
+        w = window(top, bot, blocks, margin, pad, keep, full)
+        epmax = max(max(r[8] for r in rows), 0.0)
+        out.write(" ".join(f"{v:.6g}" for v in w) + f" {epmax:.6g}\n")
+    elif what == "sheet":
+        eps = [r[8] for r in rows]
         for i in range(len(rows) - 1):
             quad = [top[i], top[i + 1], bot[i + 1], bot[i]]
-            write_polygon(f, [p[0] for p in quad], [p[1] for p in quad],
+            write_polygon(out, [p[0] for p in quad], [p[1] for p in quad],
                           0.5 * (eps[i] + eps[i + 1]))
-    with open(os.path.join(outdir, "outline.dat"), "w", encoding="utf-8") as f:
-        f.write("# the sheet's outline: x/h y/h\n")
+    elif what == "outline":
         ring = top + bot[::-1]
-        write_polygon(f, [p[0] for p in ring], [p[1] for p in ring])
-
-    # the window in x: the bead, else the sheet; then what must be kept
-    span = None
-    if ftools is not None:
-        blocks = read_blocks(ftools, 2)
-        if len(blocks) != 2 or min(len(b) for b in blocks) < 2:
-            die(f"'{ftools}': not two tool blocks", 1)
-        with open(os.path.join(outdir, "tools.dat"), "w", encoding="utf-8") as f:
-            f.write("# the physical tool surfaces: block 0 upper, block 1 lower; "
-                    "x/h y/h\n")
-            for k, (block, side) in enumerate(zip(blocks, (1.0, -1.0))):
-                tx = [p[0] for p in block]
-                ty = [p[1] for p in block]
-                # the upper tool lies above the sheet: its surface is the
-                # centreline surface moved up (left normal, x increasing)
-                if tx[-1] < tx[0]:
-                    tx.reverse()
-                    ty.reverse()
-                if all(b >= a for a, b in zip(tx, tx[1:])):
-                    px, py = erode(tx, ty, 0.5, side)
-                else:
-                    # a tool that is no function of x (an overhang)
-                    px, py = mitre(tx, ty, 0.5 * side)
-                px += [px[-1], px[0]]
-                py += [side * FAR, side * FAR]
-                write_polygon(f, px, py)
-                if k == 0:
-                    f.write("\n")
-                s = bead_span(block)
-                if s is not None:
-                    span = s if span is None else (min(span[0], s[0]), max(span[1], s[1]))
-    sheet_x = [p[0] for p in top + bot]
-    if span is None or full:
-        span = (min(sheet_x), max(sheet_x))
-    xmin = span[0] - margin
-    xmax = span[1] + margin
-    for k in keep:
-        xmin = min(xmin, k - 2.0)
-        xmax = max(xmax, k + 2.0)
-    # never wider than the sheet and its margin
-    xmin = max(xmin, min(sheet_x) - margin)
-    xmax = min(xmax, max(sheet_x) + margin)
-
-    inside = [p[1] for p in top + bot if xmin <= p[0] <= xmax]
-    if not inside:
-        inside = [p[1] for p in top + bot]
-    ymin = min(inside) - pad
-    ymax = max(inside) + pad
-    print(f"{xmin:.6g} {xmax:.6g} {ymin:.6g} {ymax:.6g} {max(max(eps), 0.0):.6g}")
+        write_polygon(out, [p[0] for p in ring], [p[1] for p in ring])
+    else:
+        write_tools(out, blocks)
     return 0
 
 
