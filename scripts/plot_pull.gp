@@ -3,7 +3,7 @@
 #
 # Usage:
 #   gnuplot -c scripts/plot_pull.gp [--title=TEXT] [--size=W,H] [--key=POS]
-#           PULL.dat[::LABEL[::STYLE]] ... OUT.png
+#           [--no-marks] PULL.dat[::LABEL[::STYLE]] ... OUT.png
 #
 #   PULL.dat  a pull.dat written by drawbead (column 1: Delta/h,
 #             column 2: N/(E h)); LABEL is its legend entry (default: the
@@ -13,6 +13,13 @@
 #   --title   the plot title (default: none); --size in pixels (PNG, SVG)
 #             or inches (PDF); --key a gnuplot "set key" position such as
 #             'top left' (default 'bottom right').
+#   --no-marks  do not mark where the curves tear
+#
+# Where a run tore while pulling (summary.txt beside its pull.dat gives
+# delta_cr_over_h, the paper's pointwise criterion, and
+# delta_cr_nonlocal_over_h, the averaged-strain criterion), its curve
+# carries a filled dot at Delta_cr, labelled with its value, and an open
+# circle where the averaged criterion was met.
 #
 # gnuplot -c passes at most 9 arguments: up to 8 files, fewer with options.
 # Explicit column numbers throughout: the files' '#' header lines are
@@ -22,7 +29,7 @@
 #       'out/fig9b_beadA_steel_free_mu02/pull.dat::mu = 0.2' fig9.png
 
 if (ARGC < 2) {
-    print "usage: gnuplot -c plot_pull.gp [--title=TEXT] [--size=W,H] [--key=POS] PULL.dat[::LABEL[::STYLE]] ... OUT.png"
+    print "usage: gnuplot -c plot_pull.gp [--title=TEXT] [--size=W,H] [--key=POS] [--no-marks] PULL.dat[::LABEL[::STYLE]] ... OUT.png"
     exit status 1
 }
 
@@ -30,6 +37,7 @@ out = ARGV[ARGC]
 ptitle = ''
 psize = ''
 pkey = 'bottom right'
+marks = 1
 array files[9]
 array labels[9]
 array styles[9]
@@ -45,6 +53,9 @@ do for [i = 1:ARGC - 1] {
             if (a[1:6] eq '--key=') {
                 pkey = a[7:]
             } else {
+              if (a eq '--no-marks') {
+                marks = 0
+              } else {
                 p = strstrt(a, '::')
                 f = a
                 lab = ''
@@ -74,6 +85,7 @@ do for [i = 1:ARGC - 1] {
                         styles[n] = sty
                     }
                 }
+              }
             }
         }
     }
@@ -122,10 +134,51 @@ set offsets 0, 0, graph 0.05, 0
 set mxtics 2
 set mytics 2
 
+# where each curve tears: N/(E h) at Delta_cr interpolated in its pull.dat
+readable(f) = system("test -r '" . f . "' && echo yes") eq 'yes'
+num(s) = (s eq '' || s eq 'none') ? NaN : real(s)
+# sval(FILE, KEY): a value of the summary.txt FILE ('' if missing)
+sval(f, key) = readable(f) ? system("awk -F' = ' '$1 == \"" . key . "\" { print $2 }' '" . f . "'") : ''
+# at(FILE, D): column 2 of FILE at column 1 = D (linear interpolation)
+at(f, d) = real(system(sprintf("awk -v d=%.10g '!/^#/ && NF { if ($1 >= d) { print (n ? y + (d - x) * ($2 - y) / ($1 - x) : $2); done = 1; exit } x = $1; y = $2; n = 1 } END { if (!done) print y }' '%s'", d, f)))
+ntear = 0
+if (marks) {
+    ymax = real(system("awk '!/^#/ && NF && $2 > m { m = $2 } END { print m + 0 }' '" . files[1] . "'"))
+    do for [i = 2:n] {
+        m = real(system("awk '!/^#/ && NF && $2 > m { m = $2 } END { print m + 0 }' '" . files[i] . "'"))
+        ymax = (m > ymax) ? m : ymax
+    }
+    do for [i = 1:n] {
+        f = files[i]
+        fsum = (strstrt(f, '/') > 0 ? system("dirname '" . f . "'") : '.') . '/summary.txt'
+        d1 = num(sval(fsum, 'delta_cr_over_h'))
+        d2 = num(sval(fsum, 'delta_cr_nonlocal_over_h'))
+        if (d2 == d2) {
+            ntear = ntear + 1
+            eval sprintf("set label %d '' at %.10g, %.10g point lt %d pt 6 ps 2.2 lw 2 front", 100 + i, d2, at(f, d2), i)
+        }
+        if (d1 == d1) {
+            ntear = ntear + 1
+            y1 = at(f, d1)
+            eval sprintf("set label %d '' at %.10g, %.10g point lt %d pt 7 ps 1.6 front", 200 + i, d1, y1, i)
+            # the value, upright, above the dot (below it near the top)
+            up = (y1 < 0.6 * ymax)
+            eval sprintf("set label %d 'Δcr = %.2fh' at %.10g, %.10g rotate by 90 %s offset 0, %s tc lt %d front", \
+                300 + i, d1, d1, y1, up ? 'left' : 'right', up ? '1.2' : '-1.2', i)
+        }
+    }
+}
+
 cmd = 'plot '
 do for [i = 1:n] {
     cmd = cmd . sprintf("files[%d] using 1:2 with lines lt %d %s title labels[%d]", i, i, styles[i], i)
     if (i < n) { cmd = cmd . ', ' }
+}
+if (ntear > 0) {
+    # room right of a mark at the end of the longest curve
+    set offsets 0, graph 0.02, graph 0.05, 0
+    cmd = cmd . ", NaN with points pt 7 ps 1.6 lc rgb '#000000' title 'tears (pointwise criterion, Δcr)'"
+    cmd = cmd . ", NaN with points pt 6 ps 2.2 lw 2 lc rgb '#000000' title 'tears (averaged-strain criterion)'"
 }
 eval cmd
 unset output

@@ -16,9 +16,11 @@
 #
 # Columns used: 1 (s/h, reference position) and 4 (lambda - 1). The pull
 # curve is left out when the run did no pulling (final_delta_over_h = 0).
-# The tearing point s* of the paper's pointwise criterion (and that of the
-# mesh-objective averaged-strain criterion, if it differs) is marked by a
-# dotted vertical line.
+# The tearing point s* of the paper's pointwise criterion and that of the
+# mesh-objective averaged-strain criterion are marked by dotted vertical
+# lines, each labelled with s* and the pull Delta_cr (or lock depth H) at
+# which it was met; the x range holds both ends of the sheet with 1h to
+# spare, so that a mark at an end is seen.
 # Example:
 #   gnuplot -c scripts/plot_strain.gp out/fig5a_beadA_steel fig5a.png
 
@@ -101,36 +103,43 @@ set ylabel 'mid-surface strain  λ − 1  [-]'
 set grid lc rgb '#dddddd' lw 1
 set key nobox samplen 3 spacing 1.2 width 2
 eval 'set key ' . pkey
-set offsets 0, 0, graph 0.15, 0
+set offsets 0, 0, graph 0.2, 0
 set yrange [*<0:*]
 set mxtics 2
 set mytics 2
 set xzeroaxis lt -1 lw 0.5
 
-# tearing points, labelled on the side facing the middle of the sheet
+# the stations at both ends lie 1h inside the frame, so that a tearing
+# point at an end (the averaged criterion may pick one) is seen
 stats flock using 1 nooutput
-smid = 0.5 * (STATS_min + STATS_max)
+smin = STATS_min
+smax = STATS_max
+smid = 0.5 * (smin + smax)
+set xrange [smin - 1:smax + 1]
+
+# tearing points: a dotted vertical line for each criterion met (the paper's
+# pointwise one, and the mesh-objective averaged-strain one), labelled at
+# the top of the frame on the side facing the middle of the sheet
+# tear_label(NAME, S, DELTA, H): the label text
+tear_label(name, s, d, h) = sprintf(' %s: s* = %.1fh', name, s) . \
+    ((d == d) ? sprintf(', Δcr = %.2fh ', d) : ((h == h) ? sprintf(', at H = %.2fh ', h) : ' '))
+# mark(TAG, S, AT, LABEL, COLOUR, HEIGHT): the line at S and its label
+# ending (or starting) at AT
+mark(tag, s, at, lab, col, y) = sprintf("set arrow %d from %.10g, graph 0 to %.10g, graph 1 nohead dt 3 lw 2 lc rgb '%s' back; ", tag, s, s, col) . \
+    sprintf("set label %d '%s' at %.10g, graph %g %s tc rgb '%s' front", tag, lab, at, y, (at < smid) ? 'left' : 'right', col)
 if (marks) {
     sstar = num(sval('s_star_over_h'))
     snl = num(sval('s_star_nonlocal_over_h'))
-    dcr = num(sval('delta_cr_over_h'))
+    # two marks on the same side of the middle: both labels clear of both
+    # lines
+    both = (sstar == sstar) && (snl == snl) && ((sstar < smid) == (snl < smid))
+    at1 = !both ? sstar : (((sstar < smid) == (sstar > snl)) ? sstar : snl)
+    at2 = !both ? snl : at1
     if (sstar == sstar) {
-        set arrow 1 from sstar, graph 0 to sstar, graph 1 nohead dt 3 lw 1.5 lc rgb '#D55E00' back
-        lab = (dcr == dcr) ? sprintf(' s* = %.1fh (Δcr = %.2fh)', sstar, dcr) : sprintf(' s* = %.1fh', sstar)
-        if (sstar < smid) {
-            set label 1 lab . ' ' at sstar, graph 0.96 left tc rgb '#D55E00' front
-        } else {
-            set label 1 lab . ' ' at sstar, graph 0.96 right tc rgb '#D55E00' front
-        }
+        eval mark(1, sstar, at1, tear_label('pointwise', sstar, num(sval('delta_cr_over_h')), num(sval('lock_cr_over_h'))), '#D55E00', 0.96)
     }
-    if (snl == snl && !(sstar == sstar && abs(snl - sstar) < 0.5)) {
-        set arrow 2 from snl, graph 0 to snl, graph 1 nohead dt 3 lw 1.5 lc rgb '#009E73' back
-        lab = sprintf(' s* averaged = %.1fh ', snl)
-        if (snl < smid) {
-            set label 2 lab at snl, graph 0.90 left tc rgb '#009E73' front
-        } else {
-            set label 2 lab at snl, graph 0.90 right tc rgb '#009E73' front
-        }
+    if (snl == snl) {
+        eval mark(2, snl, at2, tear_label('averaged', snl, num(sval('delta_cr_nonlocal_over_h')), num(sval('lock_cr_nonlocal_over_h'))), '#009E73', 0.895)
     }
 }
 
