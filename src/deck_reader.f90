@@ -18,8 +18,8 @@ module deck_reader
    use errors, only: error_list, add_error, warn
    use text, only: lower, load_text, itoa
    use deck, only: deck_type, group_names, resolve_defaults, validate_deck, max_umat_props
-   use deck_scan, only: group_text, scan_groups, split_assignments, clip, strip_separators, &
-                        is_letter
+   use deck_scan, only: group_text, scan_groups, split_assignments, check_repeated, clip, &
+                        strip_separators, is_letter
    implicit none
    private
    public :: read_deck, echo_deck, list_variables
@@ -599,48 +599,5 @@ contains
                         clip(value)//" ("//why//")")
       end do
    end subroutine diagnose_group
-   !> check_repeated -- a variable set twice in a group is an error (a
-   !> namelist read would silently keep the last value).  Names are
-   !> compared in lower case with their subscripts, so x(1) and x(2) differ.
-   !>
-   !> group  [in]     group name, lower case.
-   !> body   [in]     the group's text without '&group' and '/'.
-   !> path   [in]     deck name, for messages.
-   !> errs   [in,out] one error per repeated variable.
-   subroutine check_repeated(group, body, path, errs)
-      character(len=*), intent(in) :: group, body, path
-      type(error_list), intent(inout) :: errs
-
-      integer, allocatable :: starts(:), eqs(:)
-      integer :: k, j
-      character(len=:), allocatable :: name
-
-      call split_assignments(body, starts, eqs)
-      do k = 2, size(starts)
-         name = assigned_name(k)
-         if (len(name) == 0) cycle
-         do j = 1, k - 1
-            if (assigned_name(j) == name) then
-               call add_error(errs, "deck '"//trim(path)//"', group &"//group//', variable '// &
-                              name//': set more than once (each variable may be given once)')
-               exit
-            end if
-         end do
-      end do
-
-   contains
-
-      !> the name (with subscripts, blanks removed, lower case) of assignment i
-      function assigned_name(i) result(r)
-         integer, intent(in) :: i
-         character(len=:), allocatable :: r
-         integer :: c
-         r = ''
-         do c = starts(i), eqs(i) - 1
-            if (body(c:c) /= ' ') r = r//body(c:c)
-         end do
-         r = lower(r)
-      end function assigned_name
-   end subroutine check_repeated
 
 end module deck_reader

@@ -29,7 +29,7 @@ module hardening
    private
 
    public :: law_swift, law_voce, law_table
-   public :: ip_law, ip_law_constants, ip_swift_k, ip_swift_eps0, ip_swift_n, &
+   public :: ip_youngs, ip_poisson, ip_r_value, ip_law, ip_law_constants, ip_swift_k, ip_swift_eps0, ip_swift_n, &
              ip_voce_sigma0, ip_voce_q, ip_voce_b, ip_table_m
    public :: flow_stress, flow_stress_block, plastic_work, law_sizes_ok, check_law_props, &
              read_curve_file
@@ -37,7 +37,11 @@ module hardening
    !> hardening law ids (props(ip_law))
    integer, parameter :: law_swift = 1, law_voce = 2, law_table = 3
 
-   !> place of the law id in props (after E, nu, R) and of its first constant
+   !> the layout of the built-in law's props, owned here because both the
+   !> return mapping and the UMAT (material_j2, which re-exports the first
+   !> three) read it: the elastic constants E, nu, R ...
+   integer, parameter :: ip_youngs = 1, ip_poisson = 2, ip_r_value = 3
+   !> ... then the law id and its first constant
    integer, parameter :: ip_law = 4, ip_law_constants = ip_law + 1
    !> Swift constants K, eps0, n
    integer, parameter :: ip_swift_k = ip_law_constants, ip_swift_eps0 = ip_law_constants + 1, &
