@@ -163,31 +163,27 @@ contains
       character(len=*), intent(in) :: text
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: msg
-      integer :: done
-      integer(c_long) :: n
-      msg = ''
-      stat = 0
-      done = 0
-      do while (done < len(text))
-         n = c_write(int(fd, c_int), text(done + 1:), int(len(text) - done, c_size_t))
-         if (n < 0) then
-            stat = errno()
-            if (stat == eintr) cycle
-            msg = errno_text(stat)
-            return
-         end if
-         done = done + int(n)
-      end do
+      call write_all(fd, text, -1, stat, msg)
    end subroutine file_write
 
    !> FILE_WRITE_AT: write text at a byte offset of an open file (pwrite),
    !> without moving its end: a record rewritten in place.
    !>  fd      [in]  descriptor
    !>  text    [in]  the bytes
-   !>  offset  [in]  where, in bytes from the start
+   !>  offset  [in]  where, in bytes from the start (>= 0)
    !>  stat    [out] 0, or errno
    !>  msg     [out] the system's reason when stat /= 0
    subroutine file_write_at(fd, text, offset, stat, msg)
+      integer, intent(in) :: fd, offset
+      character(len=*), intent(in) :: text
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: msg
+      call write_all(fd, text, offset, stat, msg)
+   end subroutine file_write_at
+
+   !> WRITE_ALL: write(2) (offset < 0) or pwrite(2) at offset until every
+   !> byte is written; EINTR is retried.
+   subroutine write_all(fd, text, offset, stat, msg)
       integer, intent(in) :: fd, offset
       character(len=*), intent(in) :: text
       integer, intent(out) :: stat
@@ -198,8 +194,12 @@ contains
       stat = 0
       done = 0
       do while (done < len(text))
-         n = c_pwrite(int(fd, c_int), text(done + 1:), int(len(text) - done, c_size_t), &
-                      int(offset + done, c_long))
+         if (offset < 0) then
+            n = c_write(int(fd, c_int), text(done + 1:), int(len(text) - done, c_size_t))
+         else
+            n = c_pwrite(int(fd, c_int), text(done + 1:), int(len(text) - done, c_size_t), &
+                         int(offset + done, c_long))
+         end if
          if (n < 0) then
             stat = errno()
             if (stat == eintr) cycle
@@ -208,7 +208,7 @@ contains
          end if
          done = done + int(n)
       end do
-   end subroutine file_write_at
+   end subroutine write_all
 
    !> FILE_CLOSE: close a descriptor (its data is then with the system).
    !>  fd    [in]  descriptor

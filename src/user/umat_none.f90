@@ -5,7 +5,7 @@
 !> Not part of the library.
 
 !> UMAT: the error path.  Reached only if set-up let a user model through
-!> in a binary without one: writes one *ERROR* line to error_unit naming the
+!> in a binary without one: writes one *ERROR* line (module errors) naming the
 !> cure, asks for a zero increment (pnewdt = 0, the UMAT contract's signal
 !> of a programming error), and changes nothing else.
 !>  stress, statev, sse, spd, scd [in,out] left as they are
@@ -16,7 +16,8 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
                 stran, dstran, time, dtime, temp, dtemp, predef, dpred, cmname, ndi, &
                 nshr, ntens, nstatv, props, nprops, coords, drot, pnewdt, celent, dfgrd0, &
                 dfgrd1, noel, npt, layer, kspt, kstep, kinc)
-   use kinds, only: dp, error_unit
+   use kinds, only: dp
+   use errors, only: print_error
    implicit none
    character(len=80), intent(in) :: cmname
    integer, intent(in) :: ndi, nshr, ntens, nstatv, nprops, noel, npt, layer, kspt, kstep, kinc
@@ -35,8 +36,8 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
               u23 => noel, u24 => npt, u25 => layer, u26 => kspt, u27 => kstep, u28 => kinc)
    end associate
 
-   write (error_unit, '(a)') '*ERROR* umat: this program holds no user material routine; ' &
-      //'build it with: make UMAT=path/to/umat.f90'
+   call print_error('this program holds no user material routine; build it with: '// &
+                    'make UMAT=path/to/umat.f90', 'umat')
    ddsdde = 0.0_dp
    rpl = 0.0_dp
    ddsddt = 0.0_dp
