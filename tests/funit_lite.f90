@@ -23,6 +23,35 @@
 !>    compared exactly after removing leading and trailing blanks (pFUnit's
 !>    default).
 !>
+!> Names of the real funit (reserved here)
+!>    pFUnit's `funit` (4.14, built with its defaults, so with fHamcrest)
+!>    exports about a hundred names besides the assertions: fHamcrest's
+!>    matchers (is, equal_to, not, near, any_of, ...), pFUnit's classes
+!>    (Test, TestCase, TestSuite, ...) and procedures (run, initialize, ...).
+!>    A test that declares a local of one of these names breaks there: with
+!>    gfortran 12 a local `integer :: is` passed as an actual argument is
+!>    read as fHamcrest's derived type `Is` ("Derived type 'is' is used as
+!>    an actual argument").  So that the same test breaks here first, this
+!>    module exports every one of those names too, as an empty derived type
+!>    (most of them are derived types there; none of them does anything
+!>    here), and tests/pfunit_lite.py puts `use funit` into every procedure
+!>    of a converted test, where a local of a reserved name is a plain
+!>    compile error ("Symbol 'is' ... conflicts with symbol from module
+!>    'funit'").  The only intrinsic among them, NOT, is therefore hidden
+!>    in the tests (pFUnit's generic `not` extends it; use IEOR(i, -1)).
+!>
+!>    Where the list comes from: the installed module of pFUnit 4.14.0
+!>    (fArgParse 1.10.0, gFTL-shared 1.11.0, gFTL 1.15.2; cmake -DSKIP_MPI=YES
+!>    -DSKIP_OPENMP=YES -DSKIP_ESMF=YES, all else default), listed with
+!>       printf 'program p\nuse funit\nend program p\n' > p.f90
+!>       gfortran -fsyntax-only -fdump-fortran-original \
+!>          -I$PFUNIT_DIR/include p.f90 | sed -n "s/^ *symtree: '\([A-Za-z]\w*\)'.*/\1/p"
+!>    (101 names: the 13 this module implements, the 84 below, output_unit,
+!>    which is iso_fortran_env's here as there, and the module names funit,
+!>    fhamcrest and iso_fortran_env).  The fHamcrest names agree with the
+!>    `public` statements of pFUnit's src/funit/fhamcrest/*.F90.  Redo the
+!>    listing when pFUnit is upgraded.
+!>
 !> Standard Fortran 2008 only (no compiler extensions).
 module funit
    use, intrinsic :: iso_fortran_env, only: real64, output_unit
@@ -36,6 +65,99 @@ module funit
    public :: assertGreaterThan, assertGreaterThanOrEqual
    public :: assertRelativelyEqual, assertIsNaN, assertIsFinite
    public :: funit_test_proc, funit_run_test, funit_skip_test, funit_summary
+   public :: output_unit
+
+   ! Reserved names of the real funit (see the header): fHamcrest's
+   ! matchers, matcher types and assert_that.
+   type, public :: AbstractMatcher; end type AbstractMatcher
+   type, public :: AllOf; end type AllOf
+   type, public :: all_of; end type all_of
+   type, public :: AnyOf; end type AnyOf
+   type, public :: any_of; end type any_of
+   type, public :: array_with_size; end type array_with_size
+   type, public :: assert_that; end type assert_that
+   type, public :: contains_string; end type contains_string
+   type, public :: empty_array; end type empty_array
+   type, public :: ends_with; end type ends_with
+   type, public :: equal_to; end type equal_to
+   type, public :: Every; end type Every
+   type, public :: every_item; end type every_item
+   type, public :: false; end type false
+   type, public :: Is; end type Is
+   type, public :: IsArrayWithSize; end type IsArrayWithSize
+   type, public :: IsEqual; end type IsEqual
+   type, public :: IsNear; end type IsNear
+   type, public :: IsNot; end type IsNot
+   type, public :: IsRelativelyNear; end type IsRelativelyNear
+   type, public :: IsTrueOrFalse; end type IsTrueOrFalse
+   type, public :: Matchable; end type Matchable
+   type, public :: MatcherDescription; end type MatcherDescription
+   type, public :: near; end type near
+   type, public :: not; end type not
+   type, public :: relatively_near; end type relatively_near
+   type, public :: starts_with; end type starts_with
+   type, public :: StringContains; end type StringContains
+   type, public :: StringDescription; end type StringDescription
+   type, public :: StringEndsWith; end type StringEndsWith
+   type, public :: StringStartsWith; end type StringStartsWith
+   type, public :: true; end type true
+
+   ! Reserved names: pFUnit's classes and procedures (FUnit_Core, FUnit).
+   type, public :: AbstractTestParameter; end type AbstractTestParameter
+   type, public :: BaseTestRunner; end type BaseTestRunner
+   type, public :: catch; end type catch
+   type, public :: catchNext; end type catchNext
+   type, public :: DebugListener; end type DebugListener
+   type, public :: disable; end type disable
+   type, public :: Expectation; end type Expectation
+   type, public :: finalize; end type finalize
+   type, public :: generic_run; end type generic_run
+   type, public :: get_context; end type get_context
+   type, public :: ignore_all; end type ignore_all
+   type, public :: ignore_differences; end type ignore_differences
+   type, public :: initialize; end type initialize
+   type, public :: keep_all; end type keep_all
+   type, public :: ListenerPointer; end type ListenerPointer
+   type, public :: LoadTests_interface; end type LoadTests_interface
+   type, public :: NameFilter; end type NameFilter
+   type, public :: ParallelContext; end type ParallelContext
+   type, public :: ParameterizedTestCase; end type ParameterizedTestCase
+   type, public :: Predicate; end type Predicate
+   type, public :: RemoteRunner; end type RemoteRunner
+   type, public :: ResultPrinter; end type ResultPrinter
+   type, public :: RobustRunner; end type RobustRunner
+   type, public :: run; end type run
+   type, public :: SerialContext; end type SerialContext
+   type, public :: stub; end type stub
+   type, public :: Subject; end type Subject
+   type, public :: TapListener; end type TapListener
+   type, public :: Test; end type Test
+   type, public :: TestAnnotation; end type TestAnnotation
+   type, public :: TestCase; end type TestCase
+   type, public :: TestListener; end type TestListener
+   type, public :: TestListenerVector; end type TestListenerVector
+   type, public :: TestMethod; end type TestMethod
+   type, public :: TestResult; end type TestResult
+   type, public :: TestRunner; end type TestRunner
+   type, public :: TestSuite; end type TestSuite
+   type, public :: TimeoutAnnotation; end type TimeoutAnnotation
+   type, public :: trim_all; end type trim_all
+   type, public :: WasCalled; end type WasCalled
+   type, public :: WasCalledOnce; end type WasCalledOnce
+   type, public :: WasNotCalled; end type WasNotCalled
+   type, public :: WhitespaceOptions; end type WhitespaceOptions
+   type, public :: XmlPrinter; end type XmlPrinter
+
+   ! Reserved names: pFUnit's assertions that this module does not
+   ! implement (pfunit_lite.py rejects their directives).
+   type, public :: assertAll; end type assertAll
+   type, public :: assertAny; end type assertAny
+   type, public :: assertExceptionRaised; end type assertExceptionRaised
+   type, public :: assertFail; end type assertFail
+   type, public :: assertNone; end type assertNone
+   type, public :: assertNotAll; end type assertNotAll
+   type, public :: assertNotEqual; end type assertNotEqual
+   type, public :: assertSameShape; end type assertSameShape
 
    integer, parameter :: wp = real64
    character(len=*), parameter :: rfmt = '(a,es24.16e3)'
@@ -130,7 +252,7 @@ contains
       flush (output_unit)
    end subroutine funit_run_test
 
-   !> Count a disabled test (@test(disable)) without running it.
+   !> Count a disabled test (@test, then @disable) without running it.
    subroutine funit_skip_test(suite, test_name)
       character(len=*), intent(in) :: suite, test_name
       if (.not. selected(suite, test_name)) return

@@ -13,9 +13,17 @@ Usage
 Inputs (the .pf subset; the same rules pFUnit enforces)
     * ``module test_X`` ... ``end module test_X``; the module name must be the
       file name; ``use funit`` inside.  Test procedures must be public.
-    * ``@test`` (or ``@test(disable)``) on the line before a ``subroutine``
-      without arguments; ``@before`` / ``@after`` before the set-up /
-      tear-down subroutine run around every test of the module.
+    * ``@test`` on the line before ``subroutine name()`` (no arguments, no
+      prefix such as ``pure``: pFUnit 4.14's funitproc would not see the
+      test and take the next plain subroutine instead); ``@disable`` between
+      ``@test`` and the subroutine disables it (pFUnit ignores
+      ``@test(disable)`` and runs the test, so options of @test are
+      refused); ``@before`` / ``@after`` before the set-up / tear-down
+      subroutine run around every test of the module.
+    * No local variable, dummy argument or procedure may take a name that
+      pFUnit's ``funit`` exports (fHamcrest's ``is``, ``equal_to``, ``not``,
+      ``near``, ...; pFUnit's ``Test``, ``run``, ...: the list and where it
+      comes from are in tests/funit_lite.f90): see Outputs.
     * One directive per line, never continued with ``&``, nothing after the
       closing parenthesis (no trailing comment):
         @assertEqual(expected, actual [, tolerance] [, message=...])
@@ -27,9 +35,15 @@ Inputs (the .pf subset; the same rules pFUnit enforces)
 
 Outputs
     convert: the .f90 file, line for line with the .pf file (so compiler
-        messages give the .pf line numbers).  ``@test``/``@before``/``@after``
-        become comments; an assertion becomes
+        messages give the .pf line numbers).  ``@test``/``@disable``/
+        ``@before``/``@after`` become comments; an assertion becomes
             call assertX(args, location=SourceLocation('<pf>', <line>)); if (anyExceptions()) return
+        and every procedure statement (subroutine or function, interface
+        bodies included) gets ``; use funit`` at its end, so that a local
+        that takes a name funit exports is a compile error in that
+        procedure ("Symbol 'is' ... conflicts with symbol from module
+        'funit'") and not only, as with the module's own ``use funit``, a
+        host name the local quietly hides.
     driver: a program that calls funit_run_test for each test (set-up and
         tear-down included), prints failures, then as its last line
         ``N passed, M failed``, and ends with ``stop 1`` if M > 0.
@@ -79,6 +93,23 @@ DIRECTIVE_RE = re.compile(r"^(\s*)@(\w+)(.*)$")
 MODULE_RE = re.compile(r"^\s*module\s+([a-z_]\w*)\s*(!.*)?$", re.IGNORECASE)
 SUBROUTINE_RE = re.compile(
     r"^\s*(?:(?:pure|impure|elemental|recursive|module)\s+)*subroutine\s+([a-z_]\w*)\s*(\(([^)]*)\))?",
+    re.IGNORECASE,
+)
+# How pFUnit 4.14's funitproc recognises the subroutine of a @test,
+# @before or @after (bin/funit/pFUnitParser.py, getSubroutineName): a line
+# that does not match is not taken (a @test then silently takes the next
+# plain subroutine, or none).
+FUNITPROC_SUBROUTINE_RE = re.compile(
+    r"^\s*subroutine\s+(\w*)\s*(\([\w\s,]*\))?\s*(!.*)*$", re.IGNORECASE
+)
+# The start of any procedure statement: optional prefixes (pure, elemental,
+# a type such as real(dp) or character(len=*)), then subroutine or function
+# and the name.
+PROCEDURE_RE = re.compile(
+    r"^\s*(?:(?:pure|impure|elemental|recursive|non_recursive|module)\s+"
+    r"|(?:integer|real|logical|complex|character|double\s+precision|type|class)"
+    r"\s*(?:\((?:[^()]|\([^()]*\))*\))?\s*)*"
+    r"(?:subroutine|function)\s+[a-z_]\w*\s*(?:[(&!]|$)",
     re.IGNORECASE,
 )
 USE_FUNIT_RE = re.compile(
@@ -184,16 +215,82 @@ def fortran_string(text):
     return "'" + text.replace("'", "''") + "'"
 
 
-def next_subroutine(lines, start, path, directive, lineno):
-    """Name of the subroutine that follows a @test/@before/@after line."""
+def unquoted_index(text, char):
+    """Index of the first ``char`` in ``text`` that is not inside a
+    character constant (one that opens in ``text``), or -1."""
+    quote = None
+    for i, ch in enumerate(text):
+        if quote:
+            if ch == quote:
+                quote = None  # a doubled quote closes and reopens: same result
+        elif ch in ("'", '"'):
+            quote = ch
+        elif ch == char:
+            return i
+    return -1
+
+
+def split_code(line):
+    """Split a free-form line into (code, comment)."""
+    i = unquoted_index(line, "!")
+    return (line, "") if i < 0 else (line[:i], line[i:])
+
+
+def procedure_statement_ends(lines):
+    """Indices of the lines on which a procedure statement (subroutine or
+    function) ends: its first line, or its last continuation line."""
+    ends = set()
+    continued = False  # the previous line ended with '&'
+    start = None
+    for index, line in enumerate(lines):
+        code = split_code(line)[0].rstrip()
+        if not code.strip():
+            continue  # comment lines do not end a continued statement
+        if not continued and PROCEDURE_RE.match(code):
+            start = index
+        continued = code.endswith("&")
+        if start is not None and not continued:
+            ends.add(index)
+            start = None
+    return ends
+
+
+def add_use_funit(line):
+    """Append ``; use funit`` to the procedure statement that ends on
+    ``line``: before a trailing comment, and before a ``;`` that would
+    start another statement on the same line."""
+    code, comment = split_code(line)
+    i = unquoted_index(code, ";")
+    head, tail = (code, "") if i < 0 else (code[:i], code[i:])
+    text = head.rstrip() + "; use funit" + tail
+    if comment:
+        text += " " + comment
+    return text
+
+
+def next_subroutine(lines, start, path, directive, lineno, allowed=()):
+    """Name of the subroutine that follows a @test/@before/@after line.
+    Directives named in ``allowed`` (lower case) may come in between."""
     for j in range(start, len(lines)):
         line = lines[j]
         if COMMENT_OR_BLANK_RE.match(line):
+            continue
+        directive_match = DIRECTIVE_RE.match(line)
+        if directive_match and directive_match.group(2).lower() in allowed:
             continue
         match = SUBROUTINE_RE.match(line)
         if not match:
             raise PfError(
                 path, lineno, "@%s must be followed by a subroutine" % directive
+            )
+        if not FUNITPROC_SUBROUTINE_RE.match(line):
+            raise PfError(
+                path,
+                j + 1,
+                "subroutine %s: write a test, set-up or tear-down procedure's "
+                "first line as 'subroutine %s()', nothing before it and "
+                "nothing but a comment after it (pFUnit's funitproc does not "
+                "see it otherwise)" % (match.group(1), match.group(1)),
             )
         if match.group(3) and match.group(3).strip():
             raise PfError(
@@ -215,6 +312,8 @@ def convert(path, location_name=None):
     location_file = fortran_string(location_name or path)
     out = []
     seen = set()
+    use_funit_at = procedure_statement_ends(lines)
+    disable_ok = set()  # lines where @disable may stand (after a @test)
     for index, line in enumerate(lines):
         lineno = index + 1
         if suite.module is None:
@@ -230,31 +329,45 @@ def convert(path, location_name=None):
                     )
         match = DIRECTIVE_RE.match(line)
         if not match:
-            out.append(line)
+            out.append(add_use_funit(line) if index in use_funit_at else line)
             continue
         indent, name, rest = match.groups()
         key = name.lower()
         if key == "test":
-            disabled = False
             if rest.strip():
-                options = [
-                    o.strip().lower()
-                    for o in split_args(
-                        parenthesised(rest, path, lineno, name), path, lineno
-                    )
-                ]
-                for option in options:
-                    if option == "disable":
-                        disabled = True
-                    else:
-                        raise PfError(
-                            path, lineno, "@test option %r is not supported" % option
-                        )
-            test = next_subroutine(lines, index + 1, path, name, lineno)
+                raise PfError(
+                    path,
+                    lineno,
+                    "@test options are not supported (pFUnit ignores "
+                    "@test(disable) and runs the test: write @disable on "
+                    "the line after @test)",
+                )
+            test = next_subroutine(
+                lines, index + 1, path, name, lineno, allowed=("disable",)
+            )
             if test.lower() in seen:
                 raise PfError(path, lineno, "test %s appears twice" % test)
             seen.add(test.lower())
+            disabled = False
+            for j in range(index + 1, len(lines)):
+                if SUBROUTINE_RE.match(lines[j]):
+                    break
+                directive_match = DIRECTIVE_RE.match(lines[j])
+                if directive_match and directive_match.group(2).lower() == "disable":
+                    disabled = True
+                    disable_ok.add(j)
             suite.tests.append((test, disabled))
+            out.append(indent + "!" + line.strip())
+        elif key == "disable":
+            if rest.strip():
+                raise PfError(path, lineno, "@disable takes no arguments")
+            if index not in disable_ok:
+                raise PfError(
+                    path,
+                    lineno,
+                    "@disable must stand between @test and its subroutine "
+                    "(pFUnit ignores it anywhere else)",
+                )
             out.append(indent + "!" + line.strip())
         elif key in ("before", "after"):
             if rest.strip():
