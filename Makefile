@@ -6,6 +6,8 @@
 #   make test-check      run the whole test suite with the checked build
 #   make run [DECK=...]  run bin/drawbead on $(DECK)
 #   make UMAT=my_umat.f90  build bin/drawbead with a user's material routine
+#   make valgrind [DECK=...]  build bin/drawbead-generic in build-generic/
+#                        (ARCH_FLAGS empty) and run $(DECK) under valgrind
 #   make clean           remove build/, build-check/, bin/ and out/
 #   make help            list the targets and variables
 #
@@ -83,10 +85,10 @@ TEST_FFLAGS = $(filter-out -std=%,$(FFLAGS)) -ffree-line-length-none
 
 # Goals that need no generated makefiles in $(BUILD) (the checked goals
 # re-run make with BUILD=build-check, which does generate them there)
-NO_DEPS_GOALS := clean help check-build test-check
+NO_DEPS_GOALS := clean help check-build test-check generic-build valgrind
 NEED_DEPS := $(filter-out $(NO_DEPS_GOALS),$(or $(MAKECMDGOALS),all))
 
-.PHONY: all release lib check-build test test-check run clean help FORCE
+.PHONY: all release lib check-build test test-check generic-build valgrind run clean help FORCE
 .DELETE_ON_ERROR:
 
 all: $(BIN)
@@ -259,11 +261,28 @@ test-check:
 	$(MAKE) $(CHECK_VARS) test
 
 # ---------------------------------------------------------------------------
+# Memory checking: valgrind (3.19) stops with SIGILL on the AVX-512
+# instructions of a -march=native build, so `make valgrind` builds a generic
+# binary (release flags, ARCH_FLAGS empty) in build-generic/ and runs $(DECK)
+# under valgrind into out/valgrind/; exit status 99 on any memory error or
+# leak.  tests/valgrind.sh does the same on a small deck in make test.
+# ---------------------------------------------------------------------------
+GENERIC_VARS = BUILD=build-generic BIN=bin/drawbead-generic ARCH_FLAGS=
+VALGRIND ?= valgrind
+VALGRIND_FLAGS ?= --error-exitcode=99 --leak-check=full
+
+generic-build:
+	$(MAKE) $(GENERIC_VARS) all
+
+valgrind: generic-build
+	$(VALGRIND) $(VALGRIND_FLAGS) bin/drawbead-generic -o out/valgrind $(DECK)
+
+# ---------------------------------------------------------------------------
 run: $(BIN)
 	$(BIN) $(DECK)
 
 clean:
-	rm -rf build build-check bin out
+	rm -rf build build-check build-generic bin out
 
 help:
 	@echo "Targets:"
@@ -272,8 +291,10 @@ help:
 	@echo "  test                    build and run tests/{unit,verification}/test_*.pf and the tests/ scripts"
 	@echo "  check-build             build bin/drawbead-check in build-check/ with CHECK_FFLAGS"
 	@echo "  test-check              run the whole test suite with the checked build"
+	@echo "  generic-build           build bin/drawbead-generic in build-generic/ with ARCH_FLAGS empty"
+	@echo "  valgrind                run bin/drawbead-generic $(DECK) under $(VALGRIND) $(VALGRIND_FLAGS)"
 	@echo "  run                     run $(BIN) $(DECK)"
-	@echo "  clean                   remove build/ build-check/ bin/ out/"
+	@echo "  clean                   remove build/ build-check/ build-generic/ bin/ out/"
 	@echo "Variables: FC=$(FC) LDLIBS=$(LDLIBS) DECK=$(DECK) PFUNIT_DIR=$(PFUNIT_DIR)"
 	@echo "  UMAT=$(UMAT) (a user's material routine, e.g. $(UMAT_EXAMPLE); empty: none)"
 	@echo "  UMAT_FFLAGS=$(UMAT_FFLAGS) (flags for the UMAT file)"
