@@ -23,8 +23,10 @@ of at most 1.5 mm when no profile is involved), then 1 to 3 mutations are
 applied to the deck or to one of its files: truncation, byte flips, a line
 deleted, duplicated, swapped or inserted, two values swapped (and so their
 types), a number replaced by an extreme (0, -1, 1e300, nan, huge integers,
-...), text in a numeric field, a number in a text field, a name replaced by
-another, namelist oddities (repeat counts, array indices).
+...) or scaled (by 10, 0.1, -1, ...), a deck variable set to such a value
+(set in the deck or not), text in a numeric field, a number in a text
+field, a name replaced by another, namelist oddities (repeat counts, array
+indices).
 
 Standard library only.
 """
@@ -58,20 +60,25 @@ QUOTED_RE = re.compile(rb"'[^'\n]*'")
 NAME_RE = re.compile(rb'[A-Za-z_][A-Za-z0-9_]*')
 FILE_VARS = (b'curve_file', b'upper_profile', b'lower_profile')
 
-VARIABLES = [b'title', b'output_dir', b'stop_at_localization', b'tearing_length',
-             b'fold_curvature', b'log_residuals', b'predictor', b'snapshot_every',
-             b'thickness', b'length', b'n_elements', b'mesh_beta', b'left_edge',
-             b'back_tension', b'youngs_modulus', b'poissons_ratio', b'r_value',
-             b'hardening', b'swift_k', b'swift_eps0', b'swift_n', b'voce_sigma0',
-             b'voce_q', b'voce_b', b'curve_file', b'thickness_points', b'bead',
-             b'r1', b'r2', b'b1', b'b2', b'h1', b'h2', b'upper_profile',
-             b'lower_profile', b'penalty', b'friction', b'friction_eps',
-             b'contact_smoothing', b'lock_depth', b'pull_distance',
-             b'initial_increment', b'min_increment', b'max_increment',
-             b'max_iterations', b'tolerance', b'squeeze_force_change',
-             b'max_force_change', b'control', b'sheet', b'material', b'tools',
-             b'loading', b'side', b'line', b'arc', b'cw', b'ccw', b'upper',
-             b'lower', b'nosuch']
+# the deck variables (bin/drawbead --list-variables) and their groups
+GROUP_OF = {}
+for _group, _names in ((b'control', b'title output_dir stop_at_localization tearing_length '
+                        b'fold_curvature log_residuals predictor snapshot_every'),
+                       (b'sheet', b'thickness length n_elements mesh_beta left_edge back_tension'),
+                       (b'material', b'youngs_modulus poissons_ratio r_value hardening swift_k '
+                        b'swift_eps0 swift_n voce_sigma0 voce_q voce_b curve_file thickness_points'),
+                       (b'tools', b'bead r1 r2 b1 b2 h1 h2 upper_profile lower_profile penalty '
+                        b'friction friction_eps contact_smoothing'),
+                       (b'loading', b'lock_depth pull_distance initial_increment min_increment '
+                        b'max_increment max_iterations tolerance squeeze_force_change '
+                        b'max_force_change')):
+    for _name in _names.split():
+        GROUP_OF[_name] = _group
+# names a rename may put in place of another: the variables, the groups,
+# the keywords of a profile file, and one the program does not know
+VARIABLES = sorted(GROUP_OF) + [b'control', b'sheet', b'material', b'tools', b'loading',
+                                b'side', b'line', b'arc', b'cw', b'ccw', b'upper',
+                                b'lower', b'nosuch']
 
 
 # ---------------------------------------------------------------------------
@@ -266,20 +273,6 @@ def m_namelist_oddity(rng, data):
     return _replace_span(data, m.span(), new), f'{m.group(0)[:40]!r} -> {new[:40]!r}'
 
 
-# the deck variables by group, with the kind of value each takes
-GROUP_OF = {}
-for _group, _names in ((b'control', b'title output_dir stop_at_localization tearing_length '
-                        b'fold_curvature log_residuals predictor snapshot_every'),
-                       (b'sheet', b'thickness length n_elements mesh_beta left_edge back_tension'),
-                       (b'material', b'youngs_modulus poissons_ratio r_value hardening swift_k '
-                        b'swift_eps0 swift_n voce_sigma0 voce_q voce_b curve_file thickness_points'),
-                       (b'tools', b'bead r1 r2 b1 b2 h1 h2 upper_profile lower_profile penalty '
-                        b'friction friction_eps contact_smoothing'),
-                       (b'loading', b'lock_depth pull_distance initial_increment min_increment '
-                        b'max_increment max_iterations tolerance squeeze_force_change '
-                        b'max_force_change')):
-    for _name in _names.split():
-        GROUP_OF[_name] = _group
 ODD_VALUES = ['1e-6', '1e-3', '0.5', '2', '10', '100', '1e4', '-0.5', '-1e-6']
 
 
@@ -366,7 +359,7 @@ def make_case(bases, seed, k):
         if data is None:
             continue
         files[local] = data
-        deck = set_value(deck, b'x', var, b"'" + local.encode('latin-1') + b"'")
+        deck = set_value(deck, GROUP_OF[var], var, b"'" + local.encode('latin-1') + b"'")
         what.append(f'{var.decode()} = {path} (copied as {local})')
     if kind == 'curve':
         curve = rng.choice(bases.curves)

@@ -260,13 +260,16 @@ if ! python3 scripts/fuzz_inputs.py generate --seed "$seed" --cases "$cases" --f
     echo "fuzz.sh: scripts/fuzz_inputs.py failed" >&2
     exit 2
 fi
+mkdir -p "$tmp/cases"
 find "$tmp/cases" -mindepth 1 -maxdepth 1 -type d -name 'case_*' -print0 | sort -z |
-    xargs -0 -n 1 -P "$jobs" bash "$top/tests/fuzz.sh" --run-case "$prog" "$limit"
+    xargs -0 -r -n 1 -P "$jobs" bash "$top/tests/fuzz.sh" --run-case "$prog" "$limit"
 
-rm -rf "$keep"
+# only the cases an earlier run kept go (--keep may name a directory in use)
+rm -rf "${keep:?}"/case_*
 nfail=0
 declare -A count example
 for dir in "$tmp"/cases/case_*; do
+    [[ -d $dir ]] || continue
     result=$(<"$dir/verdict.txt")
     [[ $result == ok ]] && continue
     nfail=$((nfail + 1))
@@ -281,10 +284,13 @@ cd "\$(dirname "\${BASH_SOURCE[0]}")" || exit 2
 ulimit -v 2000000 -c 0
 timeout -k 2 $limit "\${DRAWBEAD:-$prog}" -o out deck.nml
 EOF
-    # the failure's kind and its first stderr line (numbers and addresses
-    # masked) tell one bug from another
+    chmod +x "$keep/$case/cmd.sh"
+    # the failure's kind, its first stderr line (numbers and addresses
+    # masked) and the first source line of a backtrace tell one bug from
+    # another
     key="${result%%:*}: $(grep -aEm1 "$runtime_error_re|\*ERROR\*|^At line|^In file" "$dir/stderr.txt" |
         sed -E 's/0x[0-9a-f]+/0x./g; s/[0-9]+ bytes/N bytes/g' | cut -c1-150)"
+    key+=$(grep -aoEm1 'at src/[^ ]+' "$dir/stderr.txt" | sed 's/^/ /')
     count[$key]=$((${count[$key]:-0} + 1))
     [[ -n ${example[$key]:-} ]] || example[$key]=$case
 done
