@@ -65,7 +65,7 @@ GROUP_OF = {}
 for _group, _names in ((b'control', b'title output_dir stop_at_localization tearing_length '
                         b'fold_curvature log_residuals predictor snapshot_every'),
                        (b'sheet', b'thickness length n_elements mesh_beta left_edge back_tension'),
-                       (b'material', b'youngs_modulus poissons_ratio r_value hardening swift_k '
+                       (b'material', b'model umat_props youngs_modulus poissons_ratio r_value hardening swift_k '
                         b'swift_eps0 swift_n voce_sigma0 voce_q voce_b curve_file thickness_points'),
                        (b'tools', b'bead r1 r2 b1 b2 h1 h2 upper_profile lower_profile penalty '
                         b'friction friction_eps contact_smoothing'),
