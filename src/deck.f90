@@ -202,10 +202,12 @@ contains
       type(error_list), intent(inout) :: errs
 
       character(len=:), allocatable :: p
-      real(dp) :: full
+      real(dp) :: full, h_ref, sy0
       integer :: n, k
 
       p = trim(d%deck_file)
+      h_ref = default_thickness
+      if (is_positive(d%thickness)) h_ref = d%thickness
 
       ! &control
       call check_text_length(errs, at(p, 'control', 'title'), d%title)
@@ -237,11 +239,15 @@ contains
       end if
 
       ! &material
+      ! up to 1e7 MPa (fifty times steel's, eight times diamond's): beyond,
+      ! the stresses of a forming strain overflow the material's algebra
       call check_real(errs, at(p, 'material', 'youngs_modulus'), d%youngs_modulus, &
-                      lo=0.0_dp, lo_open=.true.)
+                      lo=0.0_dp, hi=1.0e7_dp, lo_open=.true.)
       call check_real(errs, at(p, 'material', 'poissons_ratio'), d%poissons_ratio, &
                       lo=-1.0_dp, hi=0.5_dp, lo_open=.true., hi_open=.true.)
-      call check_real(errs, at(p, 'material', 'r_value'), d%r_value, lo=0.0_dp, lo_open=.true.)
+      ! sheet metals have R of 0.2 to 3; past 100 Hill's criterion degenerates
+      call check_real(errs, at(p, 'material', 'r_value'), d%r_value, lo=0.0_dp, hi=100.0_dp, &
+                      lo_open=.true.)
       call check_choice(errs, at(p, 'material', 'model'), d%model, &
                         [character(len=16) :: 'j2', 'umat'])
       if (d%model == 'umat') then
@@ -268,11 +274,19 @@ contains
                          lo=0.0_dp, lo_open=.true.)
          call check_real(errs, at(p, 'material', 'swift_n'), d%swift_n, lo=0.0_dp, hi=1.0_dp, &
                          hi_open=.true.)
+         ! K eps0^n in logarithms: no overflow for any finite, positive K, eps0
+         sy0 = -1.0_dp
+         if (is_positive(d%swift_k) .and. is_positive(d%swift_eps0) .and. ieee_is_finite(d%swift_n)) then
+            if (abs(d%swift_n) < 1.0_dp) sy0 = exp(min(log(d%swift_k) + d%swift_n*log(d%swift_eps0), &
+                                                       700.0_dp))
+         end if
+         call check_yield(errs, at(p, 'material', 'swift_k'), sy0, d%youngs_modulus)
       case ('voce')
          call check_real(errs, at(p, 'material', 'voce_sigma0'), d%voce_sigma0, &
                          lo=0.0_dp, lo_open=.true.)
          call check_real(errs, at(p, 'material', 'voce_q'), d%voce_q, lo=0.0_dp)
          call check_real(errs, at(p, 'material', 'voce_b'), d%voce_b, lo=0.0_dp)
+         call check_yield(errs, at(p, 'material', 'voce_sigma0'), d%voce_sigma0, d%youngs_modulus)
       case ('table')
          if (len_trim(d%curve_file) == 0) then
             call fail(errs, at(p, 'material', 'curve_file'), &
@@ -342,13 +356,16 @@ contains
             call fail(errs, at(p, 'loading', 'lock_depth'), 'must be <= h1 + r1 = '// &
                       num(full)//' (full lock) (got '//num(d%lock_depth)//')')
       end if
-      call check_real(errs, at(p, 'loading', 'pull_distance'), d%pull_distance, lo=0.0_dp)
+      call check_real(errs, at(p, 'loading', 'pull_distance'), d%pull_distance, lo=0.0_dp, &
+                      hi=max(d%length, 0.0_dp))
       call check_real(errs, at(p, 'loading', 'min_increment'), d%min_increment, &
                       lo=0.0_dp, lo_open=.true.)
       call check_real(errs, at(p, 'loading', 'initial_increment'), d%initial_increment, &
                       lo=0.0_dp, lo_open=.true.)
+      ! at least 1e-3 h: a pull over the sheet's length then takes at most
+      ! some 1e5 increments
       call check_real(errs, at(p, 'loading', 'max_increment'), d%max_increment, &
-                      lo=0.0_dp, lo_open=.true.)
+                      lo=1.0e-3_dp*h_ref, lo_open=.false.)
       if (is_positive(d%min_increment) .and. is_positive(d%initial_increment)) then
          if (d%initial_increment < d%min_increment) &
             call fail(errs, at(p, 'loading', 'initial_increment'), 'must be >= min_increment = ' &
@@ -362,10 +379,12 @@ contains
       call check_int(errs, at(p, 'loading', 'max_iterations'), d%max_iterations, lo=2)
       call check_real(errs, at(p, 'loading', 'tolerance'), d%tolerance, lo=0.0_dp, &
                       hi=1.0e-2_dp, lo_open=.true., hi_open=.true.)
+      ! below 0.1% per increment the step control would creep (a fuzzed
+      ! 1e-30 ran for ever)
       call check_real(errs, at(p, 'loading', 'squeeze_force_change'), d%squeeze_force_change, &
-                      lo=0.0_dp, hi=0.5_dp, lo_open=.true., hi_open=.true.)
+                      lo=1.0e-3_dp, hi=0.5_dp, hi_open=.true.)
       call check_real(errs, at(p, 'loading', 'max_force_change'), d%max_force_change, &
-                      lo=0.0_dp, hi=0.5_dp, lo_open=.true., hi_open=.true.)
+                      lo=1.0e-3_dp, hi=0.5_dp, hi_open=.true.)
    end subroutine validate_deck
 
    !> check_real -- require a finite real within optional bounds.
@@ -417,6 +436,27 @@ contains
       end if
       if (.not. ok) call fail(errs, ctx, 'must be '//rule//' (got '//num(x)//')')
    end subroutine check_real
+
+   !> check_yield -- the initial yield stress must lie between 1e-6 E and E
+   !> (a plastic strain of order 1 needs a flow stress far above round-off
+   !> of the elastic stresses, and below E for the elastic predictor).
+   !> Nothing is said when E or the constants are not finite and positive
+   !> (their own checks report them).
+   !>
+   !> errs   [in,out] gets a message on failure.
+   !> ctx    [in]     see at (the constant that sets the yield stress).
+   !> sy0    [in]     the initial yield stress, MPa.
+   !> e      [in]     Young's modulus, MPa.
+   subroutine check_yield(errs, ctx, sy0, e)
+      type(error_list), intent(inout) :: errs
+      character(len=*), intent(in) :: ctx
+      real(dp), intent(in) :: sy0, e
+
+      if (.not. (is_positive(sy0) .and. is_positive(e))) return
+      if (sy0 < 1.0e-6_dp*e .or. sy0 > e) call fail(errs, ctx, &
+         'gives an initial yield stress of '//num(sy0)//' MPa, outside [1e-6 E, E] = ['// &
+         num(1.0e-6_dp*e)//', '//num(e)//'] MPa')
+   end subroutine check_yield
 
    !> check_int -- require an integer >= lo.
    !>
