@@ -356,8 +356,12 @@ contains
             call fail(errs, at(p, 'loading', 'lock_depth'), 'must be <= h1 + r1 = '// &
                       num(full)//' (full lock) (got '//num(d%lock_depth)//')')
       end if
-      call check_real(errs, at(p, 'loading', 'pull_distance'), d%pull_distance, lo=0.0_dp, &
-                      hi=max(d%length, 0.0_dp))
+      if (is_positive(d%length)) then
+         call check_real(errs, at(p, 'loading', 'pull_distance'), d%pull_distance, lo=0.0_dp, &
+                         hi=d%length)
+      else
+         call check_real(errs, at(p, 'loading', 'pull_distance'), d%pull_distance, lo=0.0_dp)
+      end if
       call check_real(errs, at(p, 'loading', 'min_increment'), d%min_increment, &
                       lo=0.0_dp, lo_open=.true.)
       call check_real(errs, at(p, 'loading', 'initial_increment'), d%initial_increment, &

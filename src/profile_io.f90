@@ -13,7 +13,7 @@
 !>                                       clockwise (sense is required; an arc
 !>                                       may exceed 180 degrees)
 !> Numbers are read strictly (text's parse_real: digits, sign, point and
-!> exponent only, finite).  Pieces are listed in chain order, left to right
+!> exponent only, finite; |x| <= 1e6 mm).  Pieces are listed in chain order, left to right
 !> overall.  The radius is |start - centre|; |end - centre| must agree
 !> within 1e-6 relative.  Each piece must start within 1e-6 mm of the
 !> previous piece's end (it is then snapped onto it).  The chain is then
@@ -27,6 +27,11 @@ module profile_io
    implicit none
    private
    public :: read_profile, write_profile
+
+   !> the largest coordinate accepted, mm (a tool a kilometre wide: beyond,
+   !> the distances of tool_gap overflow; a fuzzed -1e300 reached a piece
+   !> index of -1)
+   real(dp), parameter :: max_coordinate = 1.0e6_dp
 
    !> continuity of consecutive pieces in a file, mm
    real(dp), parameter :: file_cont_tol = 1.0e-6_dp
@@ -105,6 +110,11 @@ contains
                do k = 1, nneed
                   if (.not. parse_real(field(1 + k), v(k))) then
                      what = 'not a number: '''//field(1 + k)//''''
+                     exit
+                  end if
+                  if (abs(v(k)) > max_coordinate) then
+                     what = 'coordinate '''//field(1 + k)//''' out of range (|x| <= '// &
+                            num(max_coordinate)//' mm)'
                      exit
                   end if
                end do
