@@ -222,6 +222,11 @@ contains
       if (is_positive(d%thickness) .and. is_positive(d%length)) then
          if (d%length < 10.0_dp*d%thickness) call fail(errs, at(p, 'sheet', 'length'), &
             'must be >= 10 thickness = '//num(10.0_dp*d%thickness)//' (got '//num(d%length)//')')
+         ! the paper's sheets are 40-60 h long; past 1e4 h the shell is a
+         ! string whose bending stiffness is round-off (a fuzzed h = 1e-30 mm
+         ! never converged)
+         if (d%length > 1.0e4_dp*d%thickness) call fail(errs, at(p, 'sheet', 'length'), &
+            'must be <= 10000 thickness = '//num(1.0e4_dp*d%thickness)//' (got '//num(d%length)//')')
       end if
       call check_int(errs, at(p, 'sheet', 'n_elements'), d%n_elements, lo=2)
       ! about 18 kB of history per element with 21 stations: the largest
