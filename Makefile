@@ -28,9 +28,12 @@ PYTHON ?= python3
 # automatic arrays live on the stack, and ARCH_FLAGS picks the vector width
 # of the build machine.  Give ARCH_FLAGS= for a binary that runs on any
 # machine of the architecture (e.g. a cluster whose nodes differ).
+# -flto inlines across modules (one module per concern puts the hardening
+# law, the distance helpers and their callers in different files: without
+# it fig9d took 4% longer).
 ARCH_FLAGS ?= -march=native
 RELEASE_FFLAGS := -std=f2008 -fimplicit-none -Wall -Wextra -Wimplicit-interface -O2 -g \
-                  -fvect-cost-model=dynamic -fno-trapping-math -fstack-arrays $(ARCH_FLAGS)
+                  -fvect-cost-model=dynamic -fno-trapping-math -fstack-arrays -flto=auto $(ARCH_FLAGS)
 CHECK_FFLAGS ?= -std=f2008 -fimplicit-none -Wall -Wextra -Wimplicit-interface \
                 -O0 -g -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace \
                 -finit-real=snan

@@ -22,6 +22,8 @@ program drawbead
    use os, only: install_stop_handlers
    implicit none
    character(len=*), parameter :: version = '1.1.0'
+   !> room for a deck or directory name on the command line (as in the deck)
+   integer, parameter :: path_max = 512
    character(len=*), parameter :: usage = 'usage: drawbead DECK.nml [-o|--output DIR]'// &
                                   ' | --list-variables | --help | --version'
    type(deck_type) :: d
@@ -31,7 +33,7 @@ program drawbead
    type(state_type) :: s
    type(output_files) :: out
    type(run_record) :: rec
-   character(len=:), allocatable :: path, out_override
+   character(len=path_max) :: path, out_override
    character(len=300) :: errmsg
    character(len=:), allocatable :: iomsg
    integer :: ios
@@ -41,13 +43,13 @@ program drawbead
    call install_stop_handlers()
 
    ! set-up: every error of the deck and of the files it names, together
-   call read_deck(path, d, errs)
+   call read_deck(trim(path), d, errs)
    call setup_run(d, m, ctl, errs)
    if (errs%count > 0) then
       call report_errors(errs, error_unit)
       call finish('bad input', exit_input)
    end if
-   if (len(out_override) > 0) then
+   if (len_trim(out_override) > 0) then
       d%output_dir = out_override
       ctl%output_dir = out_override
    end if
@@ -110,7 +112,7 @@ contains
    !>  deck_path  [out] the deck
    !>  out_dir    [out] the -o value, '' if not given
    subroutine parse_command_line(deck_path, out_dir)
-      character(len=:), allocatable, intent(out) :: deck_path, out_dir
+      character(len=path_max), intent(out) :: deck_path, out_dir
       character(len=:), allocatable :: arg
       integer :: i, n, ios
       deck_path = ''
@@ -138,25 +140,35 @@ contains
             stop
          case ('-o', '--output')
             if (i == n) call usage_error('option '//arg//' needs a directory')
-            if (len(out_dir) > 0) call usage_error('option '//arg//' given twice')
+            if (len_trim(out_dir) > 0) call usage_error('option '//arg//' given twice')
             i = i + 1
-            out_dir = argument(i)
-            if (len(out_dir) == 0) call usage_error('option '//arg//' needs a directory')
+            call take(argument(i), out_dir)
+            if (len_trim(out_dir) == 0) call usage_error('option '//arg//' needs a directory')
          case default
             if (len(arg) == 0) then
                call usage_error('an empty argument')
             else if (arg(1:1) == '-') then
                call usage_error('unknown option '//arg)
-            else if (len(deck_path) > 0) then
-               call usage_error('more than one deck ('''//deck_path//''' and '''//arg// &
+            else if (len_trim(deck_path) > 0) then
+               call usage_error('more than one deck ('''//trim(deck_path)//''' and '''//arg// &
                                 '''): run one deck per call')
             end if
-            deck_path = arg
+            call take(arg, deck_path)
          end select
          i = i + 1
       end do
-      if (len(deck_path) == 0) call usage_error('no deck given')
+      if (len_trim(deck_path) == 0) call usage_error('no deck given')
    end subroutine parse_command_line
+
+   !> TAKE: a command-line name into a fixed-length variable; a name that
+   !> does not fit is a usage error (never silently cut).
+   subroutine take(name, var)
+      character(len=*), intent(in) :: name
+      character(len=path_max), intent(out) :: var
+      if (len(name) >= path_max) call usage_error('a name longer than '// &
+                                                  'the program takes: '''//name(1:60)//'...''')
+      var = name
+   end subroutine take
 
    !> ARGUMENT: command-line argument i, of any length.
    function argument(i) result(arg)
