@@ -151,19 +151,20 @@ contains
    !>  ddsdde  [out]    (n, 2, 2) consistent tangent
    !>  sse     [in,out] (n) elastic energy density
    !>  spd     [in,out] (n) plastic dissipation density
-   !>  stran   [in]     (n, 2) log strain at the start of the increment
+   !>  stran11 [in]     (n) axial log strain at the start of the increment (the
+   !>                   width strain is held at 0); read by a user's umat only
    !>  dstran  [in]     (n, 2) log strain increment
    !>  zbar    [in]     (n) current distance of each station from the
    !>                   mid-surface (coords(2) of the user's umat)
    !>  pnewdt  [in,out] set < 1 when a station asks for a smaller increment;
    !>                   the outputs are then not to be used
-   subroutine material_update(mat, n, stress, statev, ddsdde, sse, spd, stran, dstran, zbar, &
+   subroutine material_update(mat, n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, &
                               pnewdt)
       type(material_type), intent(in) :: mat
       integer, intent(in) :: n
       real(dp), intent(inout) :: stress(n, 2), statev(n, n_statev), sse(n), spd(n)
       real(dp), intent(out) :: ddsdde(n, 2, 2)
-      real(dp), intent(in) :: stran(n, 2), dstran(n, 2), zbar(n)
+      real(dp), intent(in) :: stran11(n), dstran(n, 2), zbar(n)
       real(dp), intent(inout) :: pnewdt
       real(dp), parameter :: identity(3, 3) = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, &
                                                        0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
@@ -182,7 +183,7 @@ contains
          e = sse(k)
          p = spd(k)
          scd = 0.0_dp
-         call umat(s, sv, dd, e, p, scd, rpl, ddsddt, drplde, drpldt, stran(k, :), dstran(k, :), &
+         call umat(s, sv, dd, e, p, scd, rpl, ddsddt, drplde, drpldt, [stran11(k), 0.0_dp], dstran(k, :), &
                    [0.0_dp, 0.0_dp], 1.0_dp, 0.0_dp, 0.0_dp, [0.0_dp], [0.0_dp], cmname, 2, 0, 2, &
                    n_statev, mat%props, size(mat%props), [0.0_dp, zbar(k), 0.0_dp], identity, &
                    pnewdt, 0.0_dp, identity, identity, 0, 0, 1, k, 1, 0)

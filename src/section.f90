@@ -67,7 +67,7 @@ contains
       real(dp), intent(out) :: force, moment, c(2, 2)
       real(dp), intent(inout) :: pnewdt
       integer :: k, npt
-      real(dp) :: lam(size(wz)), log_lam(size(wz)), stran(size(wz), 2), dstran(size(wz), 2)
+      real(dp) :: lam(size(wz)), log_lam(size(wz)), dstran(size(wz), 2)
       real(dp) :: ddsdde(size(wz), 2, 2)
       real(dp) :: zb, tau, wl, wl2
       npt = size(wz)
@@ -85,15 +85,13 @@ contains
       end if
       do k = 1, npt
          log_lam(k) = log(lam(k))
-         stran(k, 1) = hn(k, ih_strain)
-         stran(k, 2) = 0.0_dp
          dstran(k, 1) = log_lam(k) - hn(k, ih_strain)
          dstran(k, 2) = 0.0_dp
       end do
       h1 = hn
       call material_update(mat, npt, h1(:, ih_stress:ih_stress + 1), &
                            h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
-                           h1(:, ih_spd), stran, dstran, hn(:, ih_zbar), pnewdt)
+                           h1(:, ih_spd), hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt)
       if (pnewdt < 1.0_dp) return
       do k = 1, npt
          h1(k, ih_strain) = log_lam(k)

@@ -160,7 +160,7 @@ contains
       real(dp) :: f_scale, pnewdt, rnorm, cnorm
       ! on the heap: a large mesh must not overflow the stack (-fstack-arrays)
       real(dp), allocatable :: du(:)
-      integer :: it, i, info, backtrack
+      integer :: it, i, info, backtrack, k
       real(dp) :: g0, g1, alpha
       integer :: n_contact_prev
       logical :: counting
@@ -168,7 +168,9 @@ contains
       counting = .false.
       if (present(count_states)) counting = count_states
       allocate (du(size(r)))
-      allocate (plastic(m%npt, n_gauss, m%n_el), was_plastic(m%npt, n_gauss, m%n_el))
+      ! the state counts only with count_states (empty otherwise)
+      k = merge(m%npt, 0, counting)
+      allocate (plastic(k, n_gauss, m%n_el), was_plastic(k, n_gauss, m%n_el))
       cnorm = huge(1.0_dp)
       do it = 0, min(max_iter, max_newton_history)
          n_contact_prev = s%n_contact
