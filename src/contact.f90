@@ -69,10 +69,13 @@ contains
    !>  ch1    [out] trial history column
    !>  f      [out] force on the sheet per unit reference length
    !>  kf     [out] d f / d p (non-symmetric with friction)
-   pure subroutine contact_station(tool, shift, k, delta, mu, eps_f, p, chn, ch1, f, kf)
+   !>  fn     [out] the normal force k g(d) >= 0 alone (the pressure the
+   !>               contact section puts on the sheet's face)
+   !>  dfn    [out] d fn / d p = -k g'(d) n
+   pure subroutine contact_station(tool, shift, k, delta, mu, eps_f, p, chn, ch1, f, kf, fn, dfn)
       type(tool_type), intent(in) :: tool
       real(dp), intent(in) :: shift, k, delta, mu, eps_f, p(2), chn(:)
-      real(dp), intent(out) :: ch1(:), f(2), kf(2, 2)
+      real(dp), intent(out) :: ch1(:), f(2), kf(2, 2), fn, dfn(2)
       real(dp) :: prel(2), d, n(2), t(2), curv, ds, sense, ut, fr, dfr, dslip(2), tt, pn, dpn
       real(dp) :: dut(2)
       integer :: seg
@@ -80,6 +83,8 @@ contains
       call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg, hint=nint(chn(ich_hint)))
       f = 0.0_dp
       kf = 0.0_dp
+      fn = 0.0_dp
+      dfn = 0.0_dp
       ch1 = 0.0_dp
       ch1(ich_position:ich_position + 1) = prel
       ch1(ich_dissipation) = chn(ich_dissipation)
@@ -97,6 +102,8 @@ contains
       end if
       f = pn*n
       kf = -dpn*outer(n, n) + pn*curv*outer(t, t)
+      fn = pn
+      dfn = -dpn*n
       ! friction acts once the station's contact history has started, i.e.
       ! it was in contact at the last converged state (docs/theory.md §6)
       if (mu <= 0.0_dp .or. chn(ich_active) < 0.5_dp) return

@@ -9,7 +9,7 @@
 !>
 !>   &control   title, output_dir, stop_at_localization, tearing_length, fold_curvature,
 !>              log_residuals, predictor, snapshot_every
-!>   &sheet     thickness, length, n_elements, mesh_beta, left_edge,
+!>   &sheet     thickness, length, n_elements, mesh_beta, left_edge, normal_stress,
 !>              back_tension
 !>   &material  model, umat_props, youngs_modulus, poissons_ratio, r_value, hardening,
 !>              swift_k, swift_eps0, swift_n, voce_sigma0, voce_q, voce_b,
@@ -83,6 +83,7 @@ module deck
       real(dp) :: mesh_beta = 1.0_dp                  ! grading exponent (4.2)
       character(len=16) :: left_edge = 'clamped'      ! 'clamped' | 'free'
       real(dp) :: back_tension = 0.0_dp               ! N/mm, with 'free' only
+      character(len=16) :: normal_stress = 'contact'  ! 'contact' | 'none' (the paper's plane-stress section)
       ! &material
       real(dp) :: youngs_modulus = 207000.0_dp        ! MPa
       real(dp) :: poissons_ratio = 0.3_dp
@@ -238,6 +239,14 @@ contains
       call check_choice(errs, at(p, 'sheet', 'left_edge'), d%left_edge, &
                         [character(len=16) :: 'clamped', 'free'])
       call check_real(errs, at(p, 'sheet', 'back_tension'), d%back_tension, lo=0.0_dp)
+      call check_choice(errs, at(p, 'sheet', 'normal_stress'), d%normal_stress, &
+                        [character(len=16) :: 'contact', 'none'])
+      ! the contact section prescribes tau22 through the built-in law's
+      ! reduction to plane stress (docs/theory.md §12), which a user's UMAT
+      ! does not offer
+      if (d%normal_stress == 'contact' .and. d%model == 'umat') &
+         call fail(errs, at(p, 'sheet', 'normal_stress'), "'contact' needs the built-in "// &
+                   "material (&material model = 'j2'); set normal_stress = 'none' with a user's UMAT")
       if (d%left_edge == 'clamped' .and. ieee_is_finite(d%back_tension)) then
          if (abs(d%back_tension) > 0.0_dp) call warn(at(p, 'sheet', 'back_tension')// &
             ": ignored with left_edge = 'clamped' (it acts only on a 'free' edge)")

@@ -83,6 +83,7 @@ contains
       close (u)
 
       d%left_edge = lower(adjustl(d%left_edge))
+      d%normal_stress = lower(adjustl(d%normal_stress))
       d%hardening = lower(adjustl(d%hardening))
       d%model = lower(adjustl(d%model))
       d%bead = lower(adjustl(d%bead))
@@ -263,8 +264,9 @@ contains
 
       real(dp) :: thickness, length, mesh_beta, back_tension
       integer :: n_elements
-      character(len=16) :: left_edge
-      namelist /sheet/ thickness, length, n_elements, mesh_beta, left_edge, back_tension
+      character(len=16) :: left_edge, normal_stress
+      namelist /sheet/ thickness, length, n_elements, mesh_beta, left_edge, back_tension, &
+         normal_stress
 
       thickness = d%thickness
       length = d%length
@@ -272,6 +274,7 @@ contains
       mesh_beta = d%mesh_beta
       left_edge = d%left_edge
       back_tension = d%back_tension
+      normal_stress = d%normal_stress
       select case (action)
       case (act_read_unit)
          read (unit, nml=sheet, iostat=ios, iomsg=msg)
@@ -288,6 +291,7 @@ contains
       d%mesh_beta = mesh_beta
       d%left_edge = left_edge
       d%back_tension = back_tension
+      d%normal_stress = normal_stress
    end subroutine nml_sheet
 
    !> nml_material -- namelist &material (arguments as group_io).

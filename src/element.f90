@@ -5,11 +5,19 @@
 !>   r = int (N B_eps + M B_rho) ds
 !>   K = int (B^T C B + N d2eps/dq2 + M d2rho/dq2) ds        (docs/theory.md §2)
 !> with B = d(eps, rho)/dq and 4-point Gauss quadrature (paper §4).
+!>
+!> Contact section (docs/theory.md §12): a Gauss station pressed by a tool
+!> with the normal force f_n per unit reference length carries the face
+!> stress tau22 = -f_n/Lambda_f on that face (per unit current face area,
+!> Lambda_f = 1 + eps + zbar_f rho the face's stretch); (N, M) then depend on
+!> the face stresses, and the tangent gains
+!>   int (B_eps (dN/dtau_f) + B_rho (dM/dtau_f)) (d tau_f/dq)^T ds,
+!>   d tau_f/dq = -(d f_n/dq)/Lambda_f + f_n/Lambda_f^2 (B_eps + zbar_f B_rho).
 module element
    use kinds, only: dp
    use hermite, only: n_gauss, gauss_xi, gauss_wt, hermite_shape
    use kinematics, only: strain_measures
-   use section, only: section_response
+   use section, only: section_response, ih_zbar
    use material, only: material_type
    implicit none
    private
@@ -55,13 +63,19 @@ contains
    !>  ke     [out] tangent (8, 8)
    !>  gp     [out] per Gauss point: eps, rho, N, M (igp_strain ... igp_moment)
    !>  pnewdt [in,out] < 1 on return if the increment must be cut
-   subroutine element_internal(le, ul, wz, mat, hn, h1, re, ke, gp, pnewdt)
+   !>  face_force  [in] (2, n_gauss) normal contact force per unit reference
+   !>                   length on the (bottom, top) face of each Gauss
+   !>                   station, >= 0; all 0: the paper's section
+   !>  dface_force [in] (8, 2, n_gauss) its derivative with respect to ul
+   subroutine element_internal(le, ul, wz, mat, hn, h1, re, ke, gp, pnewdt, face_force, &
+                               dface_force)
       real(dp), intent(in) :: le, ul(8), wz(:)
       type(material_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :, :)
       real(dp), contiguous, intent(out) :: h1(:, :, :)
       real(dp), intent(out) :: re(8), ke(8, 8), gp(n_gp, n_gauss)
       real(dp), intent(inout) :: pnewdt
+      real(dp), intent(in) :: face_force(2, n_gauss), dface_force(8, 2, n_gauss)
       ! G = dg/dq has two entries per column: column k holds s1(k) in row
       ! row_1(k) (v' or w') and s2(k) in row row_2(k) (v'' or w''), so
       ! B = d(eps, rho)/dq and G^T H G are formed from those entries alone
@@ -69,15 +83,22 @@ contains
       real(dp) :: g(4), gm(4, 8), eps, rho, deps(4), drho(4), d2eps(4, 4), d2rho(4, 4)
       real(dp) :: force, moment, c(2, 2), beps(8), brho(8), hg(4, 4), dv, s1(8), s2(8)
       real(dp) :: ca(8), cb(8), hs(4, 8)
-      integer :: ig, i, j
+      real(dp) :: face_stress(2), cs(2, 2), lam_f, zb_f, gs(8, 2)
+      integer :: ig, i, j, f, npt
       re = 0.0_dp
       ke = 0.0_dp
       gp = 0.0_dp
       do ig = 1, n_gauss
          call element_gradients(gauss_xi(ig), le, ul, g, gm)
          call strain_measures(g, eps, rho, deps, drho, d2eps, d2rho)
+         npt = size(wz)
+         do f = 1, 2
+            zb_f = hn(merge(1, npt, f == 1), ih_zbar, ig)
+            lam_f = 1.0_dp + eps + zb_f*rho
+            face_stress(f) = -face_force(f, ig)/lam_f
+         end do
          call section_response(eps, rho, wz, mat, hn(:, :, ig), h1(:, :, ig), &
-                               force, moment, c, pnewdt)
+                               force, moment, c, pnewdt, face_stress, cs)
          if (pnewdt < 1.0_dp) return
          gp(igp_strain, ig) = eps
          gp(igp_curvature, ig) = rho
@@ -98,6 +119,17 @@ contains
          end do
          ca = dv*(c(1, 1)*beps + c(1, 2)*brho)
          cb = dv*(c(2, 1)*beps + c(2, 2)*brho)
+         if (any(abs(cs) > 0.0_dp)) then
+            ! the coupling to the contact pressure (module header)
+            do f = 1, 2
+               zb_f = hn(merge(1, npt, f == 1), ih_zbar, ig)
+               lam_f = 1.0_dp + eps + zb_f*rho
+               gs(:, f) = -dface_force(:, f, ig)/lam_f &
+                          + face_force(f, ig)/lam_f**2*(beps + zb_f*brho)
+            end do
+            ca = ca + dv*(cs(1, 1)*gs(:, 1) + cs(1, 2)*gs(:, 2))
+            cb = cb + dv*(cs(2, 1)*gs(:, 1) + cs(2, 2)*gs(:, 2))
+         end if
          do j = 1, 8
             do i = 1, 8
                ke(i, j) = ke(i, j) + beps(i)*ca(j) + brho(i)*cb(j) &

@@ -5,7 +5,7 @@
 module energy
    use kinds, only: dp
    use hermite, only: n_gauss, gauss_wt
-   use section, only: ih_sse, ih_spd
+   use section, only: ih_sse, ih_spd, ih_work22
    use contact, only: penalty_energy, ich_penetration, ich_dissipation
    use model, only: model_type, state_type, load_type
    use record, only: run_record
@@ -43,13 +43,16 @@ contains
    !> ENERGY_TOTALS: stored and dissipated energies of the converged state per
    !> unit width (N mm/mm): elastic, plastic (the material's sse and spd
    !> integrated over the sheet), penalty (k d^2/2 over the contact stations)
-   !> and friction dissipation.
+   !> and friction dissipation; and the work of the contact section's
+   !> thickness stress on the thickness strain (docs/theory.md §12), an input
+   !> of energy the shell's external work does not hold:
+   !>   external work + energy(5) = energy(1) + ... + energy(4).
    !>  m, s    [in]  model and converged state
-   !>  energy  [out] (elastic, plastic, penalty, friction)
+   !>  energy  [out] (elastic, plastic, penalty, friction, normal-stress work)
    pure subroutine energy_totals(m, s, energy)
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
-      real(dp), intent(out) :: energy(4)
+      real(dp), intent(out) :: energy(5)
       real(dp) :: dv
       integer :: e, ig, it
       energy = 0.0_dp
@@ -58,6 +61,7 @@ contains
             dv = gauss_wt(ig)*(m%x(e + 1) - m%x(e))
             energy(1) = energy(1) + dv*dot_product(m%wz, s%hn(:, ih_sse, ig, e))
             energy(2) = energy(2) + dv*dot_product(m%wz, s%hn(:, ih_spd, ig, e))
+            energy(5) = energy(5) + dv*dot_product(m%wz, s%hn(:, ih_work22, ig, e))
             if (m%has_tools) then
                do it = 1, 2
                   energy(3) = energy(3) + dv*penalty_energy(m%penalty, m%contact_smoothing, &

@@ -70,7 +70,8 @@
 !>     kstep, kinc   [in]     1, 0 (one step; the increment is not known).
 module material
    use kinds, only: dp
-   use material_j2, only: umat_block, n_statev, ip_youngs, isv_tangent
+   use material_j2, only: umat_block, n_statev, ip_youngs, ip_poisson, isv_tangent, isv_eps22, &
+                          isv_sigma33
    implicit none
    private
 
@@ -158,14 +159,33 @@ contains
    !>                   mid-surface (coords(2) of the user's umat)
    !>  pnewdt  [in,out] set < 1 when a station asks for a smaller increment;
    !>                   the outputs are then not to be used
+   !>  s22n, s22 [in]   optional, built-in law only: a prescribed thickness
+   !>                   stress tau22 at the start and at the end of the
+   !>                   increment (n each; docs/theory.md §12).  Absent: tau22 = 0.
+   !>  dsig_ds22 [out]  optional, with s22: d tau11 / d tau22 at fixed strain
+   !>                   (consistent), the coupling of the section to the
+   !>                   contact pressure
+   !>
+   !> A prescribed tau22 = p needs no second return mapping.  Hill's function
+   !> and the plastic flow depend on stress differences only, so with
+   !> s = (tau11 - p, tau33 - p) the yield condition is the plane-stress one
+   !> in s, and isotropic elasticity gives
+   !>   d eps11 = (ds11 - nu ds33)/E + (1 - 2 nu) dp/E + d eps11^p
+   !> (likewise eps33): the update of s is the plane-stress update driven by
+   !> the strain increments less (1 - 2 nu) dp/E, and
+   !>   tau = s + p,  d eps22 = d eps22(plane stress, s) + (1 - 2 nu) dp/E.
+   !> The plastic work s : d eps^p equals tau : d eps^p (the flow is
+   !> incompressible); the elastic energy is that of the three stresses.
    subroutine material_update(mat, n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, &
-                              pnewdt)
+                              pnewdt, s22n, s22, dsig_ds22)
       type(material_type), intent(in) :: mat
       integer, intent(in) :: n
       real(dp), intent(inout) :: stress(n, 2), statev(n, n_statev), sse(n), spd(n)
       real(dp), intent(out) :: ddsdde(n, 2, 2)
       real(dp), intent(in) :: stran11(n), dstran(n, 2), zbar(n)
       real(dp), intent(inout) :: pnewdt
+      real(dp), intent(in), optional :: s22n(n), s22(n)
+      real(dp), intent(out), optional :: dsig_ds22(n)
       real(dp), parameter :: identity(3, 3) = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, &
                                                        0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
       character(len=80), parameter :: cmname = 'UMAT'
@@ -173,8 +193,13 @@ contains
       integer :: k
 
       if (mat%kind == material_builtin) then
-         call umat_block(n, stress, statev, ddsdde, sse, spd, dstran, mat%props, &
-                         size(mat%props), n_statev, pnewdt)
+         if (present(s22)) then
+            call update_with_s22(mat%props, n, stress, statev, ddsdde, sse, spd, dstran, &
+                                 s22n, s22, dsig_ds22, pnewdt)
+         else
+            call umat_block(n, stress, statev, ddsdde, sse, spd, dstran, mat%props, &
+                            size(mat%props), n_statev, pnewdt)
+         end if
          return
       end if
       do k = 1, n
@@ -195,6 +220,50 @@ contains
          spd(k) = p
       end do
    end subroutine material_update
+
+   !> UPDATE_WITH_S22: the built-in law's update with a prescribed thickness
+   !> stress (material_update's header gives the reduction to plane stress).
+   !>  props            [in]     the built-in law's constants
+   !>  n                [in]     number of stations
+   !>  stress ... spd   [in,out] as material_update
+   !>  dstran           [in]     (n, 2) log strain increment
+   !>  s22n, s22        [in]     (n) tau22 at the start and the end
+   !>  dsig_ds22        [out]    (n) d tau11 / d tau22 = 1 - (1 - 2 nu)/E (D11 + D12)
+   !>  pnewdt           [in,out] as material_update
+   pure subroutine update_with_s22(props, n, stress, statev, ddsdde, sse, spd, dstran, s22n, &
+                                   s22, dsig_ds22, pnewdt)
+      real(dp), intent(in) :: props(:)
+      integer, intent(in) :: n
+      real(dp), intent(inout) :: stress(n, 2), statev(n, n_statev), sse(n), spd(n)
+      real(dp), intent(out) :: ddsdde(n, 2, 2), dsig_ds22(n)
+      real(dp), intent(in) :: dstran(n, 2), s22n(n), s22(n)
+      real(dp), intent(inout) :: pnewdt
+      real(dp) :: c, nu, e, dmod(n, 2), s11, s33, p
+      integer :: k
+      e = props(ip_youngs)
+      nu = props(ip_poisson)
+      c = (1.0_dp - 2.0_dp*nu)/e
+      do k = 1, n
+         stress(k, 1) = stress(k, 1) - s22n(k)
+         stress(k, 2) = stress(k, 2) - s22n(k)
+         dmod(k, 1) = dstran(k, 1) - c*(s22(k) - s22n(k))
+         dmod(k, 2) = dstran(k, 2) - c*(s22(k) - s22n(k))
+      end do
+      call umat_block(n, stress, statev, ddsdde, sse, spd, dmod, props, size(props), n_statev, &
+                      pnewdt)
+      if (pnewdt < 1.0_dp) return
+      do k = 1, n
+         p = s22(k)
+         s11 = stress(k, 1) + p
+         s33 = stress(k, 2) + p
+         stress(k, 1) = s11
+         stress(k, 2) = s33
+         statev(k, isv_eps22) = statev(k, isv_eps22) + c*(p - s22n(k))
+         statev(k, isv_sigma33) = s33
+         sse(k) = (s11**2 + p**2 + s33**2 - 2.0_dp*nu*(s11*p + p*s33 + s11*s33))/(2.0_dp*e)
+         dsig_ds22(k) = 1.0_dp - c*(ddsdde(k, 1, 1) + ddsdde(k, 1, 2))
+      end do
+   end subroutine update_with_s22
 
    !> MAX_LOAD_STRAIN: the axial log strain at maximum load in plane-strain
    !> uniaxial tension (width strain held, sigma22 = 0), where the continuum

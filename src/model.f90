@@ -28,6 +28,7 @@ module model
       real(dp) :: contact_smoothing = 0.0_dp ! delta, mm: smoothed penalty onset
       real(dp) :: friction = 0.0_dp          ! mu
       real(dp) :: friction_eps = 1.0_dp      ! eps of (4.3), mm
+      logical :: contact_section = .false.   ! the tools' normal forces load the section (docs/theory.md §12)
       ! load schedule: locking to lock_depth, then pulling by pull_distance
       logical :: left_edge_free = .false.    ! v free under the back tension; else clamped
       real(dp) :: back_tension = 0.0_dp      ! N/mm, on a free left edge

@@ -43,7 +43,7 @@ module record
       real(dp) :: work = 0.0_dp, work_pull_start = 0.0_dp
       real(dp) :: last_conjugate = 0.0_dp
       real(dp), allocatable :: reactions(:)      ! residual (reactions at fixed dofs), last increment
-      real(dp) :: energy_pull_start(4) = 0.0_dp
+      real(dp) :: energy_pull_start(5) = 0.0_dp
    end type run_record
 
 contains

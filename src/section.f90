@@ -18,6 +18,20 @@
 !>   hist(:, ih_eqps)      equivalent plastic strain (statev(isv_eqps))
 !>   hist(:, ih_eps22)     thickness log strain (statev(isv_eps22))
 !>   hist(:, ih_tangent)   continuum tangent (statev(isv_tangent))
+!>   hist(:, ih_stress22)  the prescribed thickness stress tau22 of the last
+!>                         update (0 with the paper's plane-stress section)
+!>   hist(:, ih_work22)    work density of tau22 on the thickness strain,
+!>                         int tau22 d eps22 (trapezoidal per increment): the
+!>                         energy the contact pressure puts into the material
+!>                         besides the shell's N d eps + M d rho
+!>
+!> The thickness stress (docs/theory.md §12).  With the contact section a
+!> Gauss station in contact gets the normal tractions of the tools on its
+!> faces, face_stress = (tau22 on the bottom face z = -h/2, on the top face
+!> z = +h/2), compressive negative, and tau22 varies linearly in zbar between
+!> them; the material takes it as a prescribed stress.  A station whose face
+!> stresses are zero now and were zero at the last converged state runs the
+!> paper's plane-stress update unchanged.
 module section
    use kinds, only: dp
    use material_j2, only: n_statev, isv_eqps, isv_eps22, isv_tangent
@@ -25,12 +39,13 @@ module section
    implicit none
    private
    public :: n_hist, ih_strain, ih_zbar, ih_stress, ih_sse, ih_spd, ih_statev, ih_eqps, &
-             ih_eps22, ih_tangent, section_init, section_response, section_localization, &
+             ih_eps22, ih_tangent, ih_stress22, ih_work22, section_init, section_response, section_localization, &
              section_update_zbar
 
    integer, parameter :: ih_strain = 1, ih_zbar = 2, ih_stress = 3, ih_sse = 5, &
                          ih_spd = 6, ih_statev = 7
-   integer, parameter :: n_hist = ih_statev - 1 + n_statev
+   integer, parameter :: ih_stress22 = ih_statev + n_statev, ih_work22 = ih_stress22 + 1
+   integer, parameter :: n_hist = ih_work22
    !> columns of the state variables that the program reads
    integer, parameter :: ih_eqps = ih_statev - 1 + isv_eqps, &
                          ih_eps22 = ih_statev - 1 + isv_eps22, &
@@ -59,21 +74,30 @@ contains
    !>  moment   [out] M = sum w tau zbar/Lambda
    !>  c        [out] C(2,2): dN/deps, dN/drho = dM/deps, dM/drho (consistent)
    !>  pnewdt   [in,out] set < 1 when a fibre inverts or the material asks
-   subroutine section_response(eps, rho, wz, mat, hn, h1, force, moment, c, pnewdt)
+   !>  face_stress [in] tau22 on the (bottom, top) face, <= 0 (module header);
+   !>                   (0, 0): the paper's plane-stress section
+   !>  cs       [out] C_s(2,2): d(N, M)/d(face_stress) at fixed (eps, rho):
+   !>                 cs(1, :) = dN/d(bottom, top), cs(2, :) = dM/d(bottom, top)
+   subroutine section_response(eps, rho, wz, mat, hn, h1, force, moment, c, pnewdt, &
+                               face_stress, cs)
       real(dp), intent(in) :: eps, rho, wz(:)
       type(material_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :)
       real(dp), contiguous, intent(out) :: h1(:, :)
       real(dp), intent(out) :: force, moment, c(2, 2)
       real(dp), intent(inout) :: pnewdt
+      real(dp), intent(in) :: face_stress(2)
+      real(dp), intent(out) :: cs(2, 2)
       integer :: k, npt
       real(dp) :: lam(size(wz)), log_lam(size(wz)), dstran(size(wz), 2)
-      real(dp) :: ddsdde(size(wz), 2, 2)
+      real(dp) :: ddsdde(size(wz), 2, 2), s22(size(wz)), zeta(size(wz)), dsig(size(wz))
       real(dp) :: zb, tau, wl, wl2
+      logical :: with_s22
       npt = size(wz)
       force = 0.0_dp
       moment = 0.0_dp
       c = 0.0_dp
+      cs = 0.0_dp
       do k = 1, npt
          lam(k) = 1.0_dp + eps + hn(k, ih_zbar)*rho
       end do
@@ -89,10 +113,34 @@ contains
          dstran(k, 2) = 0.0_dp
       end do
       h1 = hn
-      call material_update(mat, npt, h1(:, ih_stress:ih_stress + 1), &
-                           h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
-                           h1(:, ih_spd), hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt)
-      if (pnewdt < 1.0_dp) return
+      with_s22 = any(abs(face_stress) > 0.0_dp) .or. any(abs(hn(:, ih_stress22)) > 0.0_dp)
+      if (with_s22) then
+         ! tau22 linear in zbar between the faces (docs/theory.md §12)
+         do k = 1, npt
+            zeta(k) = (hn(k, ih_zbar) - hn(1, ih_zbar))/(hn(npt, ih_zbar) - hn(1, ih_zbar))
+            s22(k) = (1.0_dp - zeta(k))*face_stress(1) + zeta(k)*face_stress(2)
+         end do
+         call material_update(mat, npt, h1(:, ih_stress:ih_stress + 1), &
+                              h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
+                              h1(:, ih_spd), hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt, &
+                              hn(:, ih_stress22), s22, dsig)
+         if (pnewdt < 1.0_dp) return
+         do k = 1, npt
+            h1(k, ih_stress22) = s22(k)
+            h1(k, ih_work22) = hn(k, ih_work22) + 0.5_dp*(hn(k, ih_stress22) + s22(k)) &
+                               *(h1(k, ih_eps22) - hn(k, ih_eps22))
+            wl = wz(k)*dsig(k)/lam(k)
+            cs(1, 1) = cs(1, 1) + wl*(1.0_dp - zeta(k))
+            cs(1, 2) = cs(1, 2) + wl*zeta(k)
+            cs(2, 1) = cs(2, 1) + wl*(1.0_dp - zeta(k))*hn(k, ih_zbar)
+            cs(2, 2) = cs(2, 2) + wl*zeta(k)*hn(k, ih_zbar)
+         end do
+      else
+         call material_update(mat, npt, h1(:, ih_stress:ih_stress + 1), &
+                              h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
+                              h1(:, ih_spd), hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt)
+         if (pnewdt < 1.0_dp) return
+      end if
       do k = 1, npt
          h1(k, ih_strain) = log_lam(k)
          zb = hn(k, ih_zbar)

@@ -69,6 +69,7 @@ contains
       m%contact_smoothing = d%contact_smoothing*h
       m%friction_eps = d%friction_eps*h
       m%left_edge_free = d%left_edge == 'free'
+      m%contact_section = d%normal_stress == 'contact'
       m%back_tension = d%back_tension
       m%lock_depth = d%lock_depth
       m%pull_distance = d%pull_distance

@@ -60,7 +60,8 @@ contains
       real(dp), intent(out) :: r(:), f_scale
       real(dp), intent(out) :: pnewdt
       real(dp) :: re(8), ke(8, 8), le, ul(8), nv(4), dn(4), d2n(4), nm(2, 8), p(2)
-      real(dp) :: fc(2), kc(2, 2), dv, shifts(2)
+      real(dp) :: fc(2, n_gauss, 2), kc(2, 2, n_gauss, 2), dv, shifts(2), fn, dfn(2)
+      real(dp) :: nmg(2, 8, n_gauss), face_force(2, n_gauss), dface_force(8, 2, n_gauss)
       integer :: e, ig, it, dofs(8), stat
       call band_zero(kb)
       r = 0.0_dp
@@ -73,31 +74,47 @@ contains
          dofs = element_dofs(e)
          le = m%x(e + 1) - m%x(e)
          ul = s%u1(dofs)
-         call element_internal(le, ul, m%wz, m%material, s%hn(:, :, :, e), s%h1(:, :, :, e), &
-                               re, ke, s%gp(:, :, e), pnewdt)
-         if (pnewdt < 1.0_dp) return
-         ! moments (slope dofs) enter the force scale divided by the thickness
-         f_scale = f_scale + sum(re(1:8:2)**2) + sum((re(2:8:2)/m%thickness)**2)
+         ! contact first: with the contact section its normal forces load the
+         ! faces of the element's Gauss stations (tool 1, the upper tool, the
+         ! top face; tool 2 the bottom face)
+         face_force = 0.0_dp
+         dface_force = 0.0_dp
          if (m%has_tools) then
             do ig = 1, n_gauss
                call hermite_shape(gauss_xi(ig), le, nv, dn, d2n)
                nm = 0.0_dp
                nm(1, v_dofs) = nv
                nm(2, w_dofs) = nv
+               nmg(:, :, ig) = nm
                p = matmul(nm, ul)
                p(1) = p(1) + m%x(e) + gauss_xi(ig)*le
-               dv = gauss_wt(ig)*le
                do it = 1, 2
                   call contact_station(m%tool(it), shifts(it), m%penalty, m%contact_smoothing, m%friction, &
                                        m%friction_eps, p, s%cn(:, ig, e, it), &
-                                       s%c1(:, ig, e, it), fc, kc)
+                                       s%c1(:, ig, e, it), fc(:, ig, it), kc(:, :, ig, it), fn, dfn)
+                  if (m%contact_section .and. fn > 0.0_dp) then
+                     face_force(3 - it, ig) = fn
+                     dface_force(:, 3 - it, ig) = matmul(dfn, nm)
+                  end if
+               end do
+            end do
+         end if
+         call element_internal(le, ul, m%wz, m%material, s%hn(:, :, :, e), s%h1(:, :, :, e), &
+                               re, ke, s%gp(:, :, e), pnewdt, face_force, dface_force)
+         if (pnewdt < 1.0_dp) return
+         ! moments (slope dofs) enter the force scale divided by the thickness
+         f_scale = f_scale + sum(re(1:8:2)**2) + sum((re(2:8:2)/m%thickness)**2)
+         if (m%has_tools) then
+            do ig = 1, n_gauss
+               dv = gauss_wt(ig)*le
+               do it = 1, 2
                   ! a station out of contact contributes nothing
                   if (s%c1(ich_active, ig, e, it) < 0.5_dp) cycle
                   s%n_contact = s%n_contact + 1
                   ! the tool pushes the sheet with fc: it enters r = f_int - f_ext with -
-                  re = re - dv*matmul(fc, nm)
-                  s%tool_force(:, it) = s%tool_force(:, it) + dv*fc
-                  ke = ke - dv*matmul(transpose(nm), matmul(kc, nm))
+                  re = re - dv*matmul(fc(:, ig, it), nmg(:, :, ig))
+                  s%tool_force(:, it) = s%tool_force(:, it) + dv*fc(:, ig, it)
+                  ke = ke - dv*matmul(transpose(nmg(:, :, ig)), matmul(kc(:, :, ig, it), nmg(:, :, ig)))
                end do
             end do
          end if

@@ -98,7 +98,7 @@ contains
       integer, intent(out) :: ios
       character(len=:), allocatable, intent(out) :: iomsg
       character(len=:), allocatable :: text
-      real(dp) :: h, eh, fsteady, steady_at, thinning, energy(4), pull_work
+      real(dp) :: h, eh, fsteady, steady_at, thinning, energy(5), pull_work, de(5)
       logical :: steady
       character(len=32) :: status
       text = ''
@@ -152,19 +152,22 @@ contains
       call put(text, 'max_penetration_over_h', rec%max_penetration, m%has_tools)
       call put(text, 'final_delta_over_h', merge(rec%pull_delta(max(rec%n_pull, 1)), &
                               0.0_dp, rec%n_pull > 0)/h, .true.)
-      ! energy balance: external work = elastic + plastic + penalty + friction
+      ! energy balance: external work + normal-stress work = elastic + plastic
+      ! + penalty + friction (energy_totals)
       call energy_totals(m, s, energy)
       call put(text, 'energy_external_work', rec%work, .true.)
       call put(text, 'energy_elastic', energy(1), .true.)
       call put(text, 'energy_plastic', energy(2), .true.)
       call put(text, 'energy_penalty', energy(3), .true.)
       call put(text, 'energy_friction', energy(4), .true.)
-      call put(text, 'energy_balance_error', (rec%work - sum(energy))/max(abs(rec%work), tiny(1.0_dp)), &
-                              rec%work > 0.0_dp)
+      call put(text, 'energy_normal_stress', energy(5), .true.)
+      call put(text, 'energy_balance_error', (rec%work + energy(5) - sum(energy(1:4))) &
+                              /max(abs(rec%work), tiny(1.0_dp)), rec%work > 0.0_dp)
       pull_work = rec%work - rec%work_pull_start
+      de = energy - rec%energy_pull_start
       call put(text, 'pull_work', pull_work, rec%n_pull > 0)
       call put(text, 'pull_energy_balance_error', &
-                              (pull_work - sum(energy - rec%energy_pull_start))/max(abs(pull_work), tiny(1.0_dp)), &
+                              (pull_work + de(5) - sum(de(1:4)))/max(abs(pull_work), tiny(1.0_dp)), &
                               rec%n_pull > 0 .and. pull_work > 0.0_dp)
       call add(text, 'increments = '//itoa(rec%increments))
       call add(text, 'newton_iterations = '//itoa(rec%newton_iterations))
