@@ -110,6 +110,8 @@ contains
          status = 'interrupted'
       else if (rec%status == run_write_failed) then
          status = 'write_failed'
+      else if (rec%torn .and. ctl%tearing_criterion == 'load_maximum') then
+         status = 'torn'
       else if (rec%localized) then
          status = 'localized'
       else
@@ -119,6 +121,12 @@ contains
       thinning = 1.0_dp - minval(s%hn(m%npt, ih_zbar, :, :) - s%hn(1, ih_zbar, :, :))/h
       call add(text, '# drawbead summary: '//trim(ctl%title))
       call add(text, 'status = '//trim(status))
+      ! the program's tearing prediction (docs/theory.md §7.4): the load
+      ! parameter is H while locking and delta while pulling
+      call add(text, 'tearing_criterion = '//trim(ctl%tearing_criterion))
+      call add(text, 'tearing_phase = '//trim(merge(rec%tear_phase, 'none    ', rec%torn)))
+      call put(text, 'tearing_delta_over_h', rec%tear_load/h, rec%torn)
+      call put(text, 'tearing_s_over_h', rec%tear_s/h, rec%torn)
       call add(text, 'localization_phase = '// &
          trim(merge(rec%loc_phase, 'none    ', rec%localized)))
       call put(text, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'pull')
