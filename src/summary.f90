@@ -121,12 +121,6 @@ contains
       thinning = 1.0_dp - minval(s%hn(m%npt, ih_zbar, :, :) - s%hn(1, ih_zbar, :, :))/h
       call add(text, '# drawbead summary: '//trim(ctl%title))
       call add(text, 'status = '//trim(status))
-      ! the program's tearing prediction (docs/theory.md §7.4): the load
-      ! parameter is H while locking and delta while pulling
-      call add(text, 'tearing_criterion = '//trim(ctl%tearing_criterion))
-      call add(text, 'tearing_phase = '//trim(merge(rec%tear_phase, 'none    ', rec%torn)))
-      call put(text, 'tearing_delta_over_h', rec%tear_load/h, rec%torn)
-      call put(text, 'tearing_s_over_h', rec%tear_s/h, rec%torn)
       call add(text, 'localization_phase = '// &
          trim(merge(rec%loc_phase, 'none    ', rec%localized)))
       call put(text, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'pull')
@@ -141,6 +135,12 @@ contains
       call put(text, 'lock_cr_nonlocal_over_h', rec%nl_load_cr/h, &
                               rec%nl_localized .and. rec%nl_phase == 'lock')
       call put(text, 's_star_nonlocal_over_h', rec%nl_s_star/h, rec%nl_localized)
+      ! the program's tearing prediction (docs/theory.md §7.4): the load
+      ! parameter is H while locking and delta while pulling
+      call add(text, 'tearing_criterion = '//trim(ctl%tearing_criterion))
+      call add(text, 'tearing_phase = '//trim(merge(rec%tear_phase, 'none    ', rec%torn)))
+      call put(text, 'tearing_delta_over_h', rec%tear_load/h, rec%torn)
+      call put(text, 'tearing_s_over_h', rec%tear_s/h, rec%torn)
       call put(text, 'tearing_length_over_h', ctl%tearing_length_over_h, .true.)
       call put(text, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
       ! the first state bent tighter than fold_curvature: past it the forces
