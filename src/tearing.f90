@@ -174,7 +174,13 @@ contains
       n = size(force)
       k = 0
       tear_load = 0.0_dp
-      if (max_at == 0 .or. force(n) > force(max_at)) then
+      ! (two tests: Fortran's .or. may evaluate force(max_at) with max_at = 0)
+      if (max_at == 0) then
+         max_at = n
+         strain_at_max = strain
+         return
+      end if
+      if (force(n) > force(max_at)) then
          max_at = n
          strain_at_max = strain
          return
