@@ -20,7 +20,8 @@ module analysis
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular, newton_solve_failed
    use step_control, only: judge_force_change, next_increment, cutback_factor
-   use tearing, only: check_localization, check_fold, strain_limit_indicator
+   use tearing, only: check_localization, check_fold, strain_limit_indicator, check_load_maximum, &
+                      tear_at_snap_back
    use energy, only: energy_totals, add_increment_work
    use output, only: output_files, write_row, write_strains, write_snapshot, write_progress
    use os, only: stop_requested, signal_name
@@ -109,7 +110,7 @@ contains
       real(dp) :: reaction, punch, lift, pen, min_ind, force, force_change, target, tool_work
       real(dp) :: next_snapshot, ell
       integer :: pulled
-      logical :: have_prev, redo, paper_met
+      logical :: have_prev, redo, paper_met, snapped
       character(len=16) :: tag
       character(len=200) :: msg
       h = m%thickness
@@ -167,8 +168,14 @@ contains
                write (rec%message, '(3a,es10.3,a)') 'no convergence in ', phase, &
                   ' at load/h = ', p/h, ': increment below min_increment'
                ! past the paper's tearing point the sheet may have no nearby
-               ! equilibrium: that ends the run normally (the neck has formed)
-               if (rec%localized .and. ctl%stop_at_localization) return
+               ! equilibrium: that ends the run normally (the neck has formed);
+               ! past a maximum of the pull force it is the tearing point
+               ! (docs/theory.md §7.4)
+               if (ctl%stop_at_localization) then
+                  if (ctl%tearing_criterion == 'load_maximum' .and. phase == 'pull') &
+                     call tear_at_snap_back(m, s, rec, snapped)
+                  if (rec%localized) return
+               end if
                rec%status = run_no_convergence
                return
             end if
@@ -211,6 +218,13 @@ contains
          call check_localization(m, s, phase, p, dt, ind_old, nl_old, ell, rec, paper_met)
          if (paper_met) call write_strains(out, 'strain_localization.dat', m, s, &
                                            'at the increment where the paper''s criterion was met')
+         ! tearing_criterion = 'section': the tearing point is the paper's
+         if (paper_met .and. ctl%tearing_criterion == 'section') then
+            rec%torn = .true.
+            rec%tear_phase = rec%loc_phase
+            rec%tear_load = rec%load_cr
+            rec%tear_s = rec%s_star
+         end if
          tool_work = 0.0_dp
          if (phase == 'lock') tool_work = 0.5_dp*dt*(rec%last_conjugate + punch)
          call add_increment_work(ld, r, s%u - u_prev, tool_work, rec)
@@ -223,6 +237,7 @@ contains
             rec%peak_force = max(rec%peak_force, reaction)
             rec%last_lift = lift
             call record_pull(rec, p, reaction)
+            if (ctl%tearing_criterion == 'load_maximum') call check_load_maximum(m, s, rec)
             call write_row(out, out%pull, [p/h, reaction/eh, reaction, real(nr%iterations, dp), &
                                       dt/h, min_ind, lift/eh, lift, pen, punch/eh])
          end if
@@ -263,8 +278,16 @@ contains
                           ' at a converged increment'
             return
          end if
-         ! stop once both tearing criteria have been met
-         if (rec%localized .and. rec%nl_localized .and. ctl%stop_at_localization) return
+         ! stop at tearing: with tearing_criterion = 'section' once both the
+         ! paper's and the averaged-strain criteria have been met (the
+         ! paper's decks), with 'load_maximum' once the neck is confirmed
+         if (ctl%stop_at_localization) then
+            if (ctl%tearing_criterion == 'section') then
+               if (rec%localized .and. rec%nl_localized) return
+            else if (rec%torn) then
+               return
+            end if
+         end if
          dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations)
          have_prev = .true.
       end do

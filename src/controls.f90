@@ -27,6 +27,7 @@ module controls
       logical :: predictor = .true.                ! extrapolate the last increment's motion
       ! tearing and fold criteria
       logical :: stop_at_localization = .true.
+      character(len=16) :: tearing_criterion = 'load_maximum'  ! the tearing prediction (docs/theory.md §7.4)
       real(dp) :: tearing_length_over_h = 1.0_dp   ! averaging length of the mesh-objective measure
       real(dp) :: fold_curvature = 1.0_dp          ! |rho| h above which the sheet is reported folded
    end type controls_type

@@ -7,7 +7,7 @@
 !> A deck is a text file of Fortran namelist groups, in any order, each
 !> optional:
 !>
-!>   &control   title, output_dir, stop_at_localization, tearing_length, fold_curvature,
+!>   &control   title, output_dir, stop_at_localization, tearing_criterion, tearing_length, fold_curvature,
 !>              log_residuals, predictor, snapshot_every
 !>   &sheet     thickness, length, n_elements, mesh_beta, left_edge, normal_stress,
 !>              back_tension
@@ -73,6 +73,7 @@ module deck
       logical :: stop_at_localization = .true.
       logical :: log_residuals = .false.          ! print each increment's Newton residual sequence
       real(dp) :: tearing_length = 1.0_dp         ! averaging length of the mesh-objective tearing measure, units of h
+      character(len=16) :: tearing_criterion = 'load_maximum'  ! 'load_maximum' | 'section' (the paper's (3.1))
       real(dp) :: fold_curvature = 1.0_dp         ! |rho| h above which the sheet is reported folded (beyond shell theory)
       logical :: predictor = .true.               ! extrapolate the last increment's motion as first guess
       real(dp) :: snapshot_every = 0.0_dp         ! strain snapshot each time H or delta passes a multiple of it, units of h (0: none)
@@ -214,6 +215,8 @@ contains
       call check_text_length(errs, at(p, 'control', 'title'), d%title)
       call check_text_length(errs, at(p, 'control', 'output_dir'), d%output_dir)
       call check_real(errs, at(p, 'control', 'tearing_length'), d%tearing_length, lo=0.0_dp)
+      call check_choice(errs, at(p, 'control', 'tearing_criterion'), d%tearing_criterion, &
+                        [character(len=16) :: 'load_maximum', 'section'])
       call check_real(errs, at(p, 'control', 'fold_curvature'), d%fold_curvature, lo=0.0_dp, lo_open=.true.)
       call check_real(errs, at(p, 'control', 'snapshot_every'), d%snapshot_every, lo=0.0_dp)
 

@@ -84,6 +84,7 @@ contains
 
       d%left_edge = lower(adjustl(d%left_edge))
       d%normal_stress = lower(adjustl(d%normal_stress))
+      d%tearing_criterion = lower(adjustl(d%tearing_criterion))
       d%hardening = lower(adjustl(d%hardening))
       d%model = lower(adjustl(d%model))
       d%bead = lower(adjustl(d%bead))
@@ -222,14 +223,16 @@ contains
       character(len=512) :: output_dir
       logical :: stop_at_localization, log_residuals, predictor
       real(dp) :: tearing_length, fold_curvature, snapshot_every
-      namelist /control/ title, output_dir, stop_at_localization, tearing_length, fold_curvature, &
-         log_residuals, predictor, snapshot_every
+      character(len=16) :: tearing_criterion
+      namelist /control/ title, output_dir, stop_at_localization, tearing_criterion, tearing_length, &
+         fold_curvature, log_residuals, predictor, snapshot_every
 
       title = d%title
       output_dir = d%output_dir
       stop_at_localization = d%stop_at_localization
       log_residuals = d%log_residuals
       predictor = d%predictor
+      tearing_criterion = d%tearing_criterion
       tearing_length = d%tearing_length
       fold_curvature = d%fold_curvature
       snapshot_every = d%snapshot_every
@@ -248,6 +251,7 @@ contains
       d%stop_at_localization = stop_at_localization
       d%log_residuals = log_residuals
       d%predictor = predictor
+      d%tearing_criterion = tearing_criterion
       d%tearing_length = tearing_length
       d%fold_curvature = fold_curvature
       d%snapshot_every = snapshot_every

@@ -74,7 +74,7 @@ program drawbead
    end if
    call write_strains(out, 'strain_lock.dat', m, s, 'after locking')
    call write_tools(out, 'tools_lock.dat', m, s%shift, 'at the end of locking')
-   if (rec%status == run_ok .and. .not. (rec%localized .and. ctl%stop_at_localization)) then
+   if (rec%status == run_ok .and. .not. (rec%torn .and. ctl%stop_at_localization)) then
       call run_phase(m, ctl, s, 'pull', 0.0_dp, m%pull_distance, out, rec)
    end if
    call write_strains(out, 'strain_pull.dat', m, s, 'after pulling')

@@ -25,6 +25,16 @@ module record
       logical :: nl_localized = .false.
       character(len=8) :: nl_phase = ''
       real(dp) :: nl_load_cr = 0.0_dp, nl_s_star = 0.0_dp
+      ! the program's tearing prediction (&control tearing_criterion,
+      ! docs/theory.md §7.4): phase, load parameter and reference position
+      logical :: torn = .false.
+      character(len=8) :: tear_phase = ''
+      real(dp) :: tear_load = 0.0_dp, tear_s = 0.0_dp
+      ! the load-maximum candidate: index in the pull history of the largest
+      ! restraining force so far (0: none yet) and ln(lambda) at every Gauss
+      ! station (flat list, element by element) in that state
+      integer :: max_at = 0
+      real(dp), allocatable :: strain_at_max(:)
       real(dp) :: peak_force = 0.0_dp, lock_force = 0.0_dp
       real(dp) :: last_lift = 0.0_dp
       integer :: increments = 0, newton_iterations = 0, cutbacks = 0

@@ -286,6 +286,7 @@ contains
       ctl%squeeze_force_change = d%squeeze_force_change
       ctl%predictor = d%predictor
       ctl%stop_at_localization = d%stop_at_localization
+      ctl%tearing_criterion = d%tearing_criterion
       ctl%tearing_length_over_h = d%tearing_length
       ctl%fold_curvature = d%fold_curvature
    end subroutine controls_of_deck

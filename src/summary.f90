@@ -110,6 +110,8 @@ contains
          status = 'interrupted'
       else if (rec%status == run_write_failed) then
          status = 'write_failed'
+      else if (rec%torn .and. ctl%tearing_criterion == 'load_maximum') then
+         status = 'torn'
       else if (rec%localized) then
          status = 'localized'
       else
@@ -133,6 +135,12 @@ contains
       call put(text, 'lock_cr_nonlocal_over_h', rec%nl_load_cr/h, &
                               rec%nl_localized .and. rec%nl_phase == 'lock')
       call put(text, 's_star_nonlocal_over_h', rec%nl_s_star/h, rec%nl_localized)
+      ! the program's tearing prediction (docs/theory.md §7.4): the load
+      ! parameter is H while locking and delta while pulling
+      call add(text, 'tearing_criterion = '//trim(ctl%tearing_criterion))
+      call add(text, 'tearing_phase = '//trim(merge(rec%tear_phase, 'none    ', rec%torn)))
+      call put(text, 'tearing_delta_over_h', rec%tear_load/h, rec%torn)
+      call put(text, 'tearing_s_over_h', rec%tear_s/h, rec%torn)
       call put(text, 'tearing_length_over_h', ctl%tearing_length_over_h, .true.)
       call put(text, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
       ! the first state bent tighter than fold_curvature: past it the forces

@@ -1,8 +1,10 @@
 !> tearing -- the criteria read off each converged state: the paper's
 !> pointwise loss of positive definiteness of the section tangent (3.1),
-!> the mesh-objective averaged-strain measure, and the fold check (a
-!> station bent tighter than the shell theory allows).  Each records the
-!> first time it is met in the run record.
+!> the mesh-objective averaged-strain measure, the program's tearing
+!> prediction (the maximum of the restraining force confirmed as a neck,
+!> docs/theory.md §7.4) and the fold check (a station bent tighter than
+!> the shell theory allows).  Each records the first time it is met in
+!> the run record.
 module tearing
    use kinds, only: dp
    use errors, only: warn
@@ -13,6 +15,18 @@ module tearing
    implicit none
    private
    public :: check_localization, check_fold, strain_limit_indicator, first_crossing
+   public :: check_load_maximum, tear_at_snap_back, track_load_maximum, neck_confirmed, &
+             load_at_maximum, parabola_vertex
+   public :: tear_force_drop, neck_strain_rate
+
+   !> A maximum of the restraining force is a neck once the force has fallen
+   !> tear_force_drop (relative) below it and either the fastest-stretching
+   !> station's log strain has grown by at least neck_strain_rate times the
+   !> pull since the maximum, in units of h, or the section tangent has lost
+   !> positive definiteness somewhere (docs/theory.md §7.4): a neck about h
+   !> long takes the whole pull (rate ~1); steady drawing through a bead
+   !> stretches each station by 0.05-0.08 per h of pull.
+   real(dp), parameter :: tear_force_drop = 0.01_dp, neck_strain_rate = 0.5_dp
 
 contains
 
@@ -69,6 +83,178 @@ contains
       end if
       nl_old = nl_new
    end subroutine check_localization
+
+   !> CHECK_LOAD_MAXIMUM: the program's tearing prediction in the pull phase
+   !> (docs/theory.md §7.4), after the increment's (delta, N) has been
+   !> appended to the pull history: track the largest restraining force and
+   !> the strain field there; once a neck is confirmed past it, record the
+   !> tearing point at the maximum (interpolated) and where the strain grew
+   !> most since.
+   !>  m, s  [in]     model and the state converged at the last pull point
+   !>  rec   [in,out] pull history; max_at, strain_at_max; torn, tear_phase,
+   !>                 tear_load, tear_s, set once
+   subroutine check_load_maximum(m, s, rec)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      type(run_record), intent(inout) :: rec
+      real(dp) :: load
+      integer :: k
+      if (rec%torn .or. rec%n_pull == 0) return
+      call track_load_maximum(rec%pull_delta(1:rec%n_pull), rec%pull_force(1:rec%n_pull), &
+                              pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), m%thickness, &
+                              rec%localized, rec%max_at, rec%strain_at_max, load, k)
+      if (k > 0) call set_torn(m, rec, load, k)
+   end subroutine check_load_maximum
+
+   !> TEAR_AT_SNAP_BACK: an increment of the pull that cannot converge past
+   !> a maximum of the restraining force, once the section has lost
+   !> positive definiteness somewhere (the paper's criterion met), is the
+   !> snap-back of a forming neck: no equilibrium is near under the
+   !> prescribed pull (docs/theory.md §7.4).  The tearing point is then the
+   !> maximum, at the station whose strain grew most since it.
+   !>  m, s  [in]     model and the last converged state
+   !>  rec   [in,out] as check_load_maximum
+   !>  torn  [out]    .true. when the tearing point was recorded here
+   subroutine tear_at_snap_back(m, s, rec, torn)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      type(run_record), intent(inout) :: rec
+      logical, intent(out) :: torn
+      real(dp), allocatable :: growth(:)
+      torn = .false.
+      if (rec%torn .or. .not. rec%localized) return
+      if (rec%max_at == 0 .or. rec%max_at >= rec%n_pull) return
+      growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
+      call set_torn(m, rec, load_at_maximum(rec%pull_delta(1:rec%n_pull), &
+                                            rec%pull_force(1:rec%n_pull), rec%max_at), &
+                    maxloc(growth, 1))
+      torn = .true.
+   end subroutine tear_at_snap_back
+
+   !> SET_TORN: record the tearing point of the pull phase.
+   !>  m     [in]     model
+   !>  rec   [in,out] torn, tear_phase, tear_load, tear_s
+   !>  load  [in]     pull distance at tearing, mm
+   !>  k     [in]     the station (flat list) where the neck forms
+   subroutine set_torn(m, rec, load, k)
+      type(model_type), intent(in) :: m
+      type(run_record), intent(inout) :: rec
+      real(dp), intent(in) :: load
+      integer, intent(in) :: k
+      rec%torn = .true.
+      rec%tear_phase = 'pull'
+      rec%tear_load = load
+      rec%tear_s = station_position(m, k)
+   end subroutine set_torn
+
+   !> TRACK_LOAD_MAXIMUM: one step of the load-maximum criterion on a force
+   !> history.  A new largest force (strictly above the one held) becomes
+   !> the candidate maximum, with the strain field of that state; past it,
+   !> neck_confirmed decides.
+   !>  delta, force   [in]     the pull history up to the current state
+   !>                          (the current state last)
+   !>  strain         [in]     log strain per station in the current state
+   !>  h              [in]     thickness (unit of the pull in the rate)
+   !>  section_lost   [in]     the section tangent has lost positive
+   !>                          definiteness at some station (paper's (3.1))
+   !>  max_at         [in,out] index of the candidate maximum (0: none yet)
+   !>  strain_at_max  [in,out] strain per station at the candidate
+   !>  tear_load      [out]    the interpolated maximum when torn, else 0
+   !>  k              [out]    the neck's station when torn, else 0
+   pure subroutine track_load_maximum(delta, force, strain, h, section_lost, max_at, strain_at_max, &
+                                      tear_load, k)
+      real(dp), intent(in) :: delta(:), force(:), strain(:), h
+      logical, intent(in) :: section_lost
+      integer, intent(inout) :: max_at
+      real(dp), allocatable, intent(inout) :: strain_at_max(:)
+      real(dp), intent(out) :: tear_load
+      integer, intent(out) :: k
+      real(dp), allocatable :: growth(:)
+      integer :: n
+      n = size(force)
+      k = 0
+      tear_load = 0.0_dp
+      ! (two tests: Fortran's .or. may evaluate force(max_at) with max_at = 0)
+      if (max_at == 0) then
+         max_at = n
+         strain_at_max = strain
+         return
+      end if
+      if (force(n) > force(max_at)) then
+         max_at = n
+         strain_at_max = strain
+         return
+      end if
+      growth = strain - strain_at_max
+      if (neck_confirmed(force(max_at), force(n), (delta(n) - delta(max_at))/h, growth, &
+                         section_lost)) then
+         k = maxloc(growth, 1)
+         tear_load = load_at_maximum(delta, force, max_at)
+      end if
+   end subroutine track_load_maximum
+
+   !> NECK_CONFIRMED: is the state past a maximum of the restraining force a
+   !> neck?  The force has fallen by tear_force_drop of the maximum, and
+   !> either the log strain of one station has grown by at least
+   !> neck_strain_rate per h of pull since the maximum (the strain
+   !> concentrates) or the section has lost positive definiteness somewhere
+   !> (a station can localize; in uniform tension the whole sheet can)
+   !> (docs/theory.md §7.4).
+   !>  f_max        [in]  the force at the maximum
+   !>  f            [in]  the force now
+   !>  pull_over_h  [in]  the pull since the maximum, in units of h
+   !>  growth       [in]  the growth of each station's log strain since then
+   !>  section_lost [in]  the paper's criterion (3.1) has been met
+   pure function neck_confirmed(f_max, f, pull_over_h, growth, section_lost) result(yes)
+      real(dp), intent(in) :: f_max, f, pull_over_h, growth(:)
+      logical, intent(in) :: section_lost
+      logical :: yes
+      logical :: concentrated
+      yes = .false.
+      if (size(growth) == 0 .or. .not. f_max > 0.0_dp) return
+      if (f > (1.0_dp - tear_force_drop)*f_max) return
+      concentrated = maxval(growth) > 0.0_dp .and. &
+                     maxval(growth) >= neck_strain_rate*max(pull_over_h, 0.0_dp)
+      yes = concentrated .or. section_lost
+   end function neck_confirmed
+
+   !> LOAD_AT_MAXIMUM: the load parameter at a maximum of a sampled force
+   !> history: the vertex of the parabola through the sample at the
+   !> maximum and its two neighbours, kept between the neighbours; the
+   !> sample itself when it has no neighbour on one side.
+   !>  delta, force [in]  the history (increasing delta)
+   !>  i            [in]  index of the largest sample
+   pure function load_at_maximum(delta, force, i) result(x)
+      real(dp), intent(in) :: delta(:), force(:)
+      integer, intent(in) :: i
+      real(dp) :: x, y
+      x = delta(i)
+      if (i <= 1 .or. i >= size(delta)) return
+      call parabola_vertex(delta(i - 1:i + 1), force(i - 1:i + 1), x, y)
+      x = min(max(x, delta(i - 1)), delta(i + 1))
+   end function load_at_maximum
+
+   !> PARABOLA_VERTEX: vertex of the parabola through three points with
+   !> increasing abscissae (Newton's divided differences).  Without
+   !> curvature (collinear points), or with abscissae not increasing, the
+   !> middle point is returned.
+   !>  x, y    [in]  the points
+   !>  xv, yv  [out] the vertex
+   pure subroutine parabola_vertex(x, y, xv, yv)
+      real(dp), intent(in) :: x(3), y(3)
+      real(dp), intent(out) :: xv, yv
+      real(dp) :: d1, d2, c2
+      xv = x(2)
+      yv = y(2)
+      if (.not. (x(2) > x(1) .and. x(3) > x(2))) return
+      d1 = (y(2) - y(1))/(x(2) - x(1))
+      d2 = (y(3) - y(2))/(x(3) - x(2))
+      c2 = (d2 - d1)/(x(3) - x(1))
+      if (.not. abs(c2) > 0.0_dp) return
+      ! y = y1 + d1 (x - x1) + c2 (x - x1)(x - x2): y' = 0 at
+      xv = 0.5_dp*(x(1) + x(2)) - 0.5_dp*d1/c2
+      yv = y(1) + d1*(xv - x(1)) + c2*(xv - x(1))*(xv - x(2))
+   end subroutine parabola_vertex
 
    !> CHECK_FOLD: a Gauss station bent to a radius below 1/fold_curvature
    !> thicknesses (|rho| h > fold_curvature) has folded: the shell theory

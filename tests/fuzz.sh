@@ -29,7 +29,7 @@
 #      directory under `timeout` and a 2 GB address-space limit.  An
 #      acceptable outcome is
 #        - exit 0 with out/summary.txt valid: one `status = ` line saying
-#          completed or localized, every `key = value` a finite number,
+#          completed, localized or torn, every `key = value` a finite number,
 #          `none` or a known word (a status or a phase);
 #        - exit 1, 2, 3 or 4 with an `*ERROR*` line on stderr (and, with 2
 #          or 4, a summary, if any, valid as above, its status
@@ -53,7 +53,7 @@ top=$PWD
 # Running one deck and judging its outcome
 # ---------------------------------------------------------------------------
 runtime_error_re='Fortran runtime error|Error termination|Backtrace|Program received signal|SIGSEGV|Floating-point exception'
-summary_words='completed|localized|no_convergence|interrupted|write_failed|running|lock|pull|none'
+summary_words='completed|localized|torn|no_convergence|interrupted|write_failed|running|lock|pull|none|load_maximum|section'
 
 # summary_problem FILE: prints why FILE is not a valid summary (nothing if it is)
 summary_problem() {
@@ -101,7 +101,7 @@ verdict() {
         problem=$(summary_problem "$summary")
         if [[ -n $problem ]]; then
             echo "FAIL bad summary: exit 0, $problem"
-        elif [[ ! $(summary_status "$summary") =~ ^(completed|localized)$ ]]; then
+        elif [[ ! $(summary_status "$summary") =~ ^(completed|localized|torn)$ ]]; then
             echo "FAIL bad summary: exit 0 with status $(summary_status "$summary")"
         else
             echo ok
