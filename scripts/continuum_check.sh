@@ -130,13 +130,16 @@ if ((plot)) && command -v gnuplot >/dev/null 2>&1; then
     gnuplot -c "$root/scripts/plot_pull.gp" --title="$name: restraining force" \
         "$dir/program/pull.dat::program" "$dir/pull.dat::continuum" "$dir/pull.png" >/dev/null 2>&1 ||
         note "no pull.png"
-    gnuplot -e "set terminal pngcairo size 900,520 noenhanced; set output '$dir/strain.png';
-        set title '$name: mid-surface strain'; set xlabel 's/h'; set ylabel 'lambda - 1';
-        set key below; set grid;
-        plot '$dir/program/strain_lock.dat' using 1:4 with lines lw 2 lc rgb '#0072B2' title 'program, after locking',
-             '$dir/strain_lock.dat' using 1:4 with lines lw 2 lc rgb '#D55E00' title 'continuum, after locking',
-             '$dir/program/strain_pull.dat' using 1:4 with lines lw 2 dt 2 lc rgb '#0072B2' title 'program, after pulling',
-             '$dir/strain_pull.dat' using 1:4 with lines lw 2 dt 2 lc rgb '#D55E00' title 'continuum, after pulling'" \
+    gnuplot -e "set terminal pngcairo size 900,800 noenhanced; set output '$dir/strain.png';
+        set multiplot layout 2,1 title '$name: mid-surface strain lambda - 1';
+        set xlabel 's/h'; set ylabel 'lambda - 1'; set key top left; set grid;
+        set title 'after locking';
+        plot '$dir/program/strain_lock.dat' using 1:4 with lines lw 2 lc rgb '#0072B2' title 'program',
+             '$dir/strain_lock.dat' using 1:4 with lines lw 2 dt 2 lc rgb '#D55E00' title 'continuum';
+        set title 'after pulling';
+        plot '$dir/program/strain_pull.dat' using 1:4 with lines lw 2 lc rgb '#0072B2' title 'program',
+             '$dir/strain_pull.dat' using 1:4 with lines lw 2 dt 2 lc rgb '#D55E00' title 'continuum';
+        unset multiplot" \
         >/dev/null 2>&1 || note "no strain.png"
 fi
 
