@@ -5,7 +5,7 @@ the program's own result files, and the numbers compared with the program.
 Usage:
     continuum_results.py convert CCX_DIR OUT_DIR
     continuum_results.py metrics RUN_DIR MODEL_JSON [--title TEXT]
-    continuum_results.py compare PROGRAM_METRICS CONTINUUM_SUMMARY
+    continuum_results.py compare PROGRAM_METRICS CONTINUUM_SUMMARY [LABEL1 LABEL2]
 
 convert   reads CCX_DIR/continuum.dat, continuum.sta and continuum_model.json
           (written by scripts/continuum_model.py and ccx) and writes into
@@ -18,7 +18,8 @@ metrics   prints, in the format of continuum_summary.txt, the same numbers
           (a run of bin/drawbead), for the comparison; MODEL_JSON gives the
           thickness, the half-length and the bead's half-width.
 compare   prints a table: each number of both files and the ratio
-          program / continuum.
+          first / second (columns headed LABEL1, LABEL2; default program,
+          continuum), e.g. two continuum meshes.
 
 Exit status 0; 2 on a missing or unreadable file.
 """
@@ -373,10 +374,10 @@ def read_summary(path):
     return res
 
 
-def compare(prog_path, cont_path):
-    """Print the table program / continuum of two summaries."""
+def compare(prog_path, cont_path, labels=('program', 'continuum')):
+    """Print the table first / second of two summaries (column headings labels)."""
     p, c = dict(read_summary(prog_path)), read_summary(cont_path)
-    print('%-40s %16s %16s %10s' % ('quantity', 'program', 'continuum', 'ratio'))
+    print('%-40s %16s %16s %10s' % ('quantity', labels[0], labels[1], 'ratio'))
     for k, cv in c:
         if k not in p:
             continue
@@ -408,8 +409,8 @@ def main(argv):
             fail('cannot read %s: %s' % (argv[2], e))
         title = argv[4] if len(argv) == 5 and argv[3] == '--title' else argv[1]
         sys.stdout.write(summary_text(argv[1], info, title))
-    elif len(argv) == 3 and argv[0] == 'compare':
-        compare(argv[1], argv[2])
+    elif len(argv) in (3, 5) and argv[0] == 'compare':
+        compare(argv[1], argv[2], tuple(argv[3:5]) or ('program', 'continuum'))
     else:
         sys.stderr.write(__doc__)
         return 2
