@@ -1,0 +1,421 @@
+#!/usr/bin/env python3
+"""continuum_results.py -- CalculiX results of the continuum cross-check as
+the program's own result files, and the numbers compared with the program.
+
+Usage:
+    continuum_results.py convert CCX_DIR OUT_DIR
+    continuum_results.py metrics RUN_DIR MODEL_JSON [--title TEXT]
+    continuum_results.py compare PROGRAM_METRICS CONTINUUM_SUMMARY [LABEL1 LABEL2]
+
+convert   reads CCX_DIR/continuum.dat, continuum.sta and continuum_model.json
+          (written by scripts/continuum_model.py and ccx) and writes into
+          OUT_DIR lock.dat, pull.dat, strain_lock.dat, strain_pull.dat (the
+          columns, units and header style of docs/output-reference.md; the
+          columns a continuum cannot give are NaN, see docs/continuum-check.md)
+          and continuum_summary.txt.
+metrics   prints, in the format of continuum_summary.txt, the same numbers
+          read off any folder holding lock.dat, pull.dat and strain_lock.dat
+          (a run of bin/drawbead), for the comparison; MODEL_JSON gives the
+          thickness, the half-length and the bead's half-width.
+compare   prints a table: each number of both files and the ratio
+          first / second (columns headed LABEL1, LABEL2; default program,
+          continuum), e.g. two continuum meshes.
+
+Exit status 0; 2 on a missing or unreadable file.
+"""
+
+import json
+import math
+import os
+import re
+import sys
+
+NAN = float('nan')
+
+
+def fail(msg):
+    """Print 'continuum_results.py: MSG' on stderr and exit 2."""
+    sys.stderr.write('continuum_results.py: %s\n' % msg)
+    sys.exit(2)
+
+
+def es(v):
+    """A number as the program writes it: 1x, es24.16e3 (NaN for none)."""
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return ' ' + 'NaN'.rjust(24)
+    m, e = ('%.16E' % v).split('E')
+    return ' ' + ('%sE%+04d' % (m, int(e))).rjust(24)
+
+
+def write_table(path, header, rows):
+    """Write a column file: '#' header lines, then one row per item."""
+    with open(path, 'w') as f:
+        for line in header:
+            f.write('# ' + line + '\n')
+        for r in rows:
+            f.write(''.join(es(v) for v in r) + '\n')
+
+
+# ---------------------------------------------------------------------------
+# Reading CalculiX's output
+# ---------------------------------------------------------------------------
+
+def read_dat(path):
+    """Blocks of a .dat file: {time: {'RF:SET': (fx, fy), 'U': {node: (ux, uy)},
+    'PEEQ': {elem: max over its integration points}}}."""
+    out = {}
+    try:
+        with open(path) as f:
+            lines = f.read().splitlines()
+    except OSError as e:
+        fail('cannot read %s: %s' % (path, e))
+    head = re.compile(r'^\s*(total force|displacements|equivalent plastic strain).*?'
+                      r'for set (\S+) and time\s+(\S+)')
+    i, n = 0, len(lines)
+    while i < n:
+        m = head.match(lines[i])
+        if not m:
+            i += 1
+            continue
+        kind, name, t = m.group(1), m.group(2), float(m.group(3))
+        blk = out.setdefault(t, {})
+        i += 1
+        rows = []
+        while i < n and not head.match(lines[i]):
+            w = lines[i].split()
+            if w:
+                rows.append(w)
+            i += 1
+        if kind == 'total force':
+            blk['RF:' + name] = (float(rows[0][0]), float(rows[0][1]))
+        elif kind == 'displacements':
+            blk['U'] = {int(r[0]): (float(r[1]), float(r[2])) for r in rows}
+        else:
+            pe = blk.setdefault('PEEQ', {})
+            for r in rows:
+                e = int(r[0])
+                pe[e] = max(pe.get(e, 0.0), float(r[2]))
+    return out
+
+
+def read_sta(path):
+    """Increments of a .sta file: [(total time, iterations of all attempts)]
+    for the converged increments, in order."""
+    res, pending = [], 0
+    try:
+        with open(path) as f:
+            for line in f:
+                w = line.split()
+                if len(w) != 7 or not w[0].isdigit():
+                    continue
+                pending += int(w[3])
+                if not w[2].endswith('U'):
+                    res.append((float(w[4]), pending))
+                    pending = 0
+    except OSError:
+        pass
+    return res
+
+
+# ---------------------------------------------------------------------------
+# Conversion
+# ---------------------------------------------------------------------------
+
+def strain_rows(info, blk):
+    """Rows of a strain file from the displacements (and plastic strains) of
+    one output time: one row per pair of neighbouring mid-surface nodes."""
+    h = info['thickness']
+    nx, ny = info['nx'], info['ny']
+    u = blk['U']
+    pe = blk.get('PEEQ', {})
+    X = {int(k): v for k, v in info['node_x'].items()}
+    Y = {int(k): v for k, v in info['node_y'].items()}
+
+    def cur(n):
+        return X[n] + u[n][0], Y[n] + u[n][1]
+
+    mid, top, bot = info['mid'], info['top'], info['bottom']
+    nseg = len(mid) - 1
+    theta, rows = [], []
+    for k in range(nseg):
+        a, b = cur(mid[k]), cur(mid[k + 1])
+        theta.append(math.atan2(b[1] - a[1], b[0] - a[0]))
+    for k in range(1, nseg):
+        while theta[k] - theta[k - 1] > math.pi:
+            theta[k] -= 2 * math.pi
+        while theta[k] - theta[k - 1] < -math.pi:
+            theta[k] += 2 * math.pi
+    ref = [0.5 * (X[mid[k]] + X[mid[k + 1]]) for k in range(nseg)]
+    for k in range(nseg):
+        d_ref = X[mid[k + 1]] - X[mid[k]]
+        a, b = cur(mid[k]), cur(mid[k + 1])
+        ds = math.hypot(b[0] - a[0], b[1] - a[1])
+        lam = ds / d_ref
+        ta, tb = cur(top[k]), cur(top[k + 1])
+        ba, bb = cur(bot[k]), cur(bot[k + 1])
+        lt = math.log(math.hypot(tb[0] - ta[0], tb[1] - ta[1]) / d_ref)
+        lb = math.log(math.hypot(bb[0] - ba[0], bb[1] - ba[1]) / d_ref)
+        tx, ty = (b[0] - a[0]) / ds, (b[1] - a[1]) / ds
+        dx = 0.5 * (ta[0] + tb[0] - ba[0] - bb[0])
+        dy = 0.5 * (ta[1] + tb[1] - ba[1] - bb[1])
+        thick = abs(dx * (-ty) + dy * tx)
+        k0, k1 = max(0, k - 1), min(nseg - 1, k + 1)
+        rho = -(theta[k1] - theta[k0]) / (ref[k1] - ref[k0])
+        ei = k // 2
+        peeq = [pe[ej * nx + ei + 1] for ej in range(ny) if ej * nx + ei + 1 in pe]
+        rows.append([ref[k] / h, 0.5 * (a[0] + b[0]) / h, 0.5 * (a[1] + b[1]) / h,
+                     lam - 1.0, math.log(lam), lt, lb, math.log(thick / h),
+                     max(peeq) if peeq else NAN, rho * h, NAN, NAN, NAN])
+    return rows
+
+
+STRAIN_LEGEND = ('1:s/h (reference position) 2:x/h 3:y/h (current centreline) 4:lambda-1 '
+                 '5:ln(lambda) 6:top_fibre_log_strain 7:bottom_fibre_log_strain '
+                 '8:thickness_log_strain(mid-surface) 9:max_equivalent_plastic_strain'
+                 '(through thickness) 10:rho*h (bending strain) 11:N/(E h) 12:M/(E h^2) '
+                 '13:localization_indicator (smallest eigenvalue of the scaled section '
+                 'tangent, <= 0: localized)')
+CONTINUUM_NOTE = ('CalculiX plane-strain continuum (scripts/continuum_check.sh): one row per pair '
+                  'of neighbouring mid-surface nodes; NaN = not given by the continuum '
+                  '(docs/continuum-check.md)')
+
+
+def convert(ccx_dir, out_dir):
+    """Write the four column files and continuum_summary.txt (see header)."""
+    try:
+        with open(os.path.join(ccx_dir, 'continuum_model.json')) as f:
+            info = json.load(f)
+    except (OSError, ValueError) as e:
+        fail('cannot read %s/continuum_model.json: %s' % (ccx_dir, e))
+    dat = read_dat(os.path.join(ccx_dir, 'continuum.dat'))
+    sta = read_sta(os.path.join(ccx_dir, 'continuum.sta'))
+    h, eh = info['thickness'], info['youngs_modulus'] * info['thickness']
+    lock, pull = info['lock_depth'], info['pull_distance']
+    title = 'continuum (CalculiX) %s' % info.get('title', '')
+    times = sorted(t for t in dat if any(k.startswith('RF:') for k in dat[t]))
+    lock_rows, pull_rows = [], []
+    t_prev = 0.0
+    for t in times:
+        b = dat[t]
+        n = b.get('RF:NRIGHT', (NAN, NAN))[0]
+        f_punch = b.get('RF:NLOWER', (NAN, NAN))[1]
+        lift = -b.get('RF:NUPPER', (NAN, NAN))[1]
+        its = sum(i for (ti, i) in sta if t_prev + 1e-9 < ti <= t + 1e-9)
+        if t <= 1.0 + 1e-9:
+            if lock == 0.0:
+                t_prev = t
+                continue
+            lock_rows.append([lock * t / h, f_punch / eh, f_punch, its, lock * (t - t_prev) / h,
+                              NAN, NAN, n / eh, n])
+        else:
+            d0 = max(t_prev, 1.0)
+            pull_rows.append([pull * (t - 1.0) / h, n / eh, n, its, pull * (t - d0) / h, NAN,
+                              lift / eh, lift, NAN, f_punch / eh])
+        t_prev = t
+    os.makedirs(out_dir, exist_ok=True)
+    write_table(os.path.join(out_dir, 'lock.dat'), [
+        'drawbead locking: %s' % title,
+        '1:H/h 2:F/(E h) 3:F[N/mm] 4:newton_iterations 5:dH/h 6:min_localization_indicator[-] '
+        '7:max_penetration/h 8:N/(E h) 9:N[N/mm]',
+        'F = upward force of the lower tool on the sheet per unit width (punch force); '
+        'N = horizontal reaction at the right edge',
+        CONTINUUM_NOTE], lock_rows)
+    write_table(os.path.join(out_dir, 'pull.dat'), [
+        'drawbead pulling: %s' % title,
+        '1:delta/h 2:N/(E h) 3:N[N/mm] 4:newton_iterations 5:d(delta)/h '
+        '6:min_localization_indicator[-] 7:lift/(E h) 8:lift[N/mm] 9:max_penetration/h '
+        '10:F/(E h)',
+        'N = restraining force (horizontal reaction at the right edge) per unit width; '
+        'lift = vertical force of the sheet opening the binder (on the upper tool)',
+        CONTINUUM_NOTE], pull_rows)
+    u_times = sorted(t for t in dat if 'U' in dat[t])
+    t_lock = max([t for t in u_times if t <= 1.0 + 1e-9], default=None)
+    t_last = u_times[-1] if u_times else None
+    for name, t, what in (('strain_lock.dat', t_lock, 'after locking'),
+                          ('strain_pull.dat', t_last, 'after pulling')):
+        rows = strain_rows(info, dat[t]) if t is not None else []
+        write_table(os.path.join(out_dir, name), [
+            'drawbead strain distribution %s: %s' % (what, title), STRAIN_LEGEND,
+            CONTINUUM_NOTE + '; time %s of 2' % ('none' if t is None else '%.6g' % t)], rows)
+    t_end = 2.0 if pull > 0 else 1.0
+    done = bool(times) and abs(times[-1] - t_end) < 1e-6
+    extra = [('status', 'completed' if done else 'no_convergence'),
+             ('final_time', '%.6g' % (times[-1] if times else 0.0)),
+             ('increments', str(len(sta))),
+             ('newton_iterations', str(sum(i for _, i in sta))),
+             ('mesh', '%d x %d CPE8R (%d per h along, %d through the thickness)'
+              % (info['nx'], info['ny'], info['per_h'], info['through']))]
+    text = summary_text(out_dir, info, 'continuum (CalculiX): %s' % info.get('title', ''), extra)
+    with open(os.path.join(out_dir, 'continuum_summary.txt'), 'w') as f:
+        f.write(text)
+
+
+# ---------------------------------------------------------------------------
+# The compared numbers
+# ---------------------------------------------------------------------------
+
+def read_rows(path):
+    """The numeric rows of a column file (NaN kept); [] if it is missing."""
+    rows = []
+    try:
+        with open(path) as f:
+            for line in f:
+                if line.startswith('#') or not line.strip():
+                    continue
+                rows.append([float(x) for x in line.split()])
+    except OSError:
+        pass
+    return rows
+
+
+def interp(xs, ys, x):
+    """Linear interpolation of ys(xs) at x (None outside the range)."""
+    for k in range(1, len(xs)):
+        if xs[k - 1] <= x <= xs[k] + 1e-12:
+            if xs[k] == xs[k - 1]:
+                return ys[k]
+            return ys[k - 1] + (ys[k] - ys[k - 1]) * (x - xs[k - 1]) / (xs[k] - xs[k - 1])
+    return None
+
+
+def summary_text(run_dir, info, title, extra=()):
+    """The compared numbers of a run folder as 'key = value' lines.
+
+    punch force at 98% of the lock depth and at full lock (lock.dat),
+    sheet tension N at the end of locking, the largest restraining force
+    and the pull at which it occurs (vertex of the parabola through the
+    largest row and its neighbours), the peak mid-surface strain lambda-1
+    after locking and the straight-part strain: the median of lambda-1
+    over the stations whose current |x| is more than 1h outside the bead
+    (|x| > bead half-width + h) and whose |s| is more than 1h inside the
+    sheet's ends."""
+    h, eh = info['thickness'], info['youngs_modulus'] * info['thickness']
+    lock = read_rows(os.path.join(run_dir, 'lock.dat'))
+    pull = read_rows(os.path.join(run_dir, 'pull.dat'))
+    strain = read_rows(os.path.join(run_dir, 'strain_lock.dat'))
+    vals = []
+    full = info['lock_depth'] / h
+    if lock:
+        xs, fs = [r[0] for r in lock], [r[2] for r in lock]
+        f98 = interp(xs, fs, 0.98 * full)
+        vals += [('punch_force_98_N_per_mm', f98),
+                 ('punch_force_98_over_Eh', None if f98 is None else f98 / eh),
+                 ('punch_force_full_lock_N_per_mm',
+                  fs[-1] if abs(xs[-1] - full) < 1e-6 * max(1.0, full) else None),
+                 ('lock_tension_N_per_mm', lock[-1][8]),
+                 ('lock_tension_over_Eh', lock[-1][8] / eh),
+                 ('lock_reached_over_h', xs[-1])]
+    else:
+        vals += [(k, None) for k in ('punch_force_98_N_per_mm', 'punch_force_98_over_Eh',
+                                     'punch_force_full_lock_N_per_mm', 'lock_tension_N_per_mm',
+                                     'lock_tension_over_Eh', 'lock_reached_over_h')]
+    if pull:
+        ds, ns = [r[0] for r in pull], [r[2] for r in pull]
+        k = max(range(len(ns)), key=lambda i: ns[i])
+        d_pk, n_pk = ds[k], ns[k]
+        if 0 < k < len(ns) - 1:
+            x0, x1, x2 = ds[k - 1], ds[k], ds[k + 1]
+            y0, y1, y2 = ns[k - 1], ns[k], ns[k + 1]
+            den = (x0 - x1) * (x0 - x2) * (x1 - x2)
+            a = (x2 * (y1 - y0) + x1 * (y0 - y2) + x0 * (y2 - y1)) / den
+            b = (x2 * x2 * (y0 - y1) + x1 * x1 * (y2 - y0) + x0 * x0 * (y1 - y2)) / den
+            if a < 0:
+                d_pk = -b / (2 * a)
+                n_pk = y0 + (a * (d_pk ** 2 - x0 ** 2) + b * (d_pk - x0))
+        vals += [('max_restraining_force_N_per_mm', n_pk),
+                 ('max_restraining_force_over_Eh', n_pk / eh),
+                 ('max_restraining_force_at_delta_over_h', d_pk),
+                 ('max_restraining_force_is_last_row', 'yes' if k == len(ns) - 1 else 'no'),
+                 ('final_delta_over_h', ds[-1])]
+    else:
+        vals += [(k, None) for k in ('max_restraining_force_N_per_mm',
+                                     'max_restraining_force_over_Eh',
+                                     'max_restraining_force_at_delta_over_h',
+                                     'max_restraining_force_is_last_row', 'final_delta_over_h')]
+    if strain:
+        lim_x = info['bead_half_width'] / h + 1.0
+        lim_s = info['half_length'] / h - 1.0
+        peak = max(r[3] for r in strain)
+        flat = sorted(r[3] for r in strain if abs(r[1]) > lim_x and abs(r[0]) < lim_s)
+        med = None
+        if flat:
+            m = len(flat)
+            med = flat[m // 2] if m % 2 else 0.5 * (flat[m // 2 - 1] + flat[m // 2])
+        peak_s = [r[0] for r in strain if r[3] == peak][0]
+        vals += [('peak_strain_lock', peak), ('peak_strain_lock_at_s_over_h', peak_s),
+                 ('straight_strain_lock', med)]
+    else:
+        vals += [('peak_strain_lock', None), ('peak_strain_lock_at_s_over_h', None),
+                 ('straight_strain_lock', None)]
+    out = ['# drawbead continuum summary: %s' % title]
+    for k, v in list(vals) + list(extra):
+        if v is None or (isinstance(v, float) and math.isnan(v)):
+            s = 'none'
+        elif isinstance(v, str):
+            s = v
+        else:
+            s = es(v).strip()
+        out.append('%s = %s' % (k, s))
+    return '\n'.join(out) + '\n'
+
+
+def read_summary(path):
+    """'key = value' lines of a summary as an ordered list of pairs."""
+    res = []
+    try:
+        with open(path) as f:
+            for line in f:
+                if line.startswith('#') or '=' not in line:
+                    continue
+                k, v = line.split('=', 1)
+                res.append((k.strip(), v.strip()))
+    except OSError as e:
+        fail('cannot read %s: %s' % (path, e))
+    return res
+
+
+def compare(prog_path, cont_path, labels=('program', 'continuum')):
+    """Print the table first / second of two summaries (column headings labels)."""
+    p, c = dict(read_summary(prog_path)), read_summary(cont_path)
+    print('%-40s %16s %16s %10s' % ('quantity', labels[0], labels[1], 'ratio'))
+    for k, cv in c:
+        if k not in p:
+            continue
+        pv = p[k]
+        try:
+            ratio = '%10.4f' % (float(pv) / float(cv))
+        except (ValueError, ZeroDivisionError):
+            ratio = '%10s' % '-'
+        print('%-40s %16s %16s %s' % (k, short(pv), short(cv), ratio))
+
+
+def short(v):
+    """A value for the table: 6 significant digits when a number."""
+    try:
+        return '%.6g' % float(v)
+    except ValueError:
+        return v
+
+
+def main(argv):
+    """Command line: see the module header."""
+    if len(argv) == 3 and argv[0] == 'convert':
+        convert(argv[1], argv[2])
+    elif len(argv) in (3, 5) and argv[0] == 'metrics':
+        try:
+            with open(argv[2]) as f:
+                info = json.load(f)
+        except (OSError, ValueError) as e:
+            fail('cannot read %s: %s' % (argv[2], e))
+        title = argv[4] if len(argv) == 5 and argv[3] == '--title' else argv[1]
+        sys.stdout.write(summary_text(argv[1], info, title))
+    elif len(argv) in (3, 5) and argv[0] == 'compare':
+        compare(argv[1], argv[2], tuple(argv[3:5]) or ('program', 'continuum'))
+    else:
+        sys.stderr.write(__doc__)
+        return 2
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,110 @@
+#!/bin/bash
+# tests/continuum.sh -- the continuum cross-check (scripts/continuum_check.sh,
+# docs/continuum-check.md) on two small cases with the coarsest continuum
+# mesh (--through 2 --per-h 1, time increments of 0.1): about 20 s.
+#
+# Usage: tests/continuum.sh [path/to/drawbead]   (run from anywhere)
+#
+#  a) tests/decks/continuum_strip.nml, a clamped strip pulled to 10% strain:
+#     homogeneous plane-strain tension in the shell and in the continuum
+#     alike (the end sections stay plane and may thin), so the conversion
+#     must give lambda - 1 = 0.1 at every row (to 1e-9), and the restraining
+#     force, the thickness strain and the plastic strain of the program
+#     within 0.5% (they differ only by the continuum's hypoelastic update,
+#     O(sigma/E) = 0.2%);
+#  b) tests/decks/continuum_bead_a_short.nml, bead A locked and pulled 0.5h
+#     with friction: the run completes, every file has the program's
+#     legend line and column count, the centreline over the male top
+#     (s = 0) is at the lock depth after locking (within 0.1h: the tools
+#     offset by h/2 the right way, the lower tool raised), and the punch
+#     force at 98% of the lock and the tension at the end of locking are
+#     within 20% of the program's (the shell is 5-10% high here).
+# Skipped (ok) when ccx is not installed. Exit 0 if all pass, 1 otherwise.
+set -u
+cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
+bin=${1:-bin/drawbead}
+if ! command -v ccx >/dev/null 2>&1; then
+    echo "ok   skipped: ccx (CalculiX) is not installed"
+    exit 0
+fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail=0
+coarse=(--through 2 --per-h 1 --initial-inc 0.05 --max-inc 0.1 --no-plot --bin "$bin")
+
+for case in strip bead_a_short; do
+    if ! scripts/continuum_check.sh "tests/decks/continuum_$case.nml" -o "$work/$case" "${coarse[@]}" \
+        >"$work/$case.log" 2>&1; then
+        echo "FAIL continuum_check.sh on continuum_$case.nml:"
+        tail -20 "$work/$case.log"
+        fail=1
+        continue
+    fi
+    echo "ok   continuum_check.sh on continuum_$case.nml completed"
+    for f in lock.dat pull.dat strain_lock.dat strain_pull.dat; do
+        if [[ $(sed -n 2p "$work/$case/$f") != "$(sed -n 2p "$work/$case/program/$f")" ]]; then
+            echo "FAIL $case/$f: legend differs from the program's"
+            fail=1
+        fi
+    done
+done
+
+if python3 - "$work" <<'PY'
+import sys
+w = sys.argv[1]
+bad = 0
+
+
+def rows(path):
+    return [[float(x) for x in l.split()] for l in open(path) if l.strip() and not l.startswith('#')]
+
+
+def check(ok, what):
+    global bad
+    print(('ok   ' if ok else 'FAIL ') + what)
+    bad += not ok
+
+
+def rel(a, b):
+    return abs(a - b) / abs(b)
+
+
+for f, n in (('lock.dat', 9), ('pull.dat', 10), ('strain_lock.dat', 13), ('strain_pull.dat', 13)):
+    for case in ('strip', 'bead_a_short'):
+        r = rows('%s/%s/%s' % (w, case, f))
+        check(all(len(x) == n for x in r), '%s/%s: %d columns in every row' % (case, f, n))
+
+# a) homogeneous tension
+c, p = rows(w + '/strip/strain_pull.dat'), rows(w + '/strip/program/strain_pull.dat')
+check(max(abs(x[3] - 0.1) for x in c) < 1e-9, 'strip: lambda - 1 = 0.1 at every row')
+cn, pn = rows(w + '/strip/pull.dat')[-1], rows(w + '/strip/program/pull.dat')[-1]
+check(abs(cn[0] - 1.0) < 1e-9 and rel(cn[2], pn[2]) < 5e-3,
+      'strip: N at delta = 1h %.4f N/mm, program %.4f' % (cn[2], pn[2]))
+check(rel(c[0][7], p[0][7]) < 5e-3,
+      'strip: thickness strain %.6f, program %.6f' % (c[0][7], p[0][7]))
+check(rel(c[0][8], p[0][8]) < 5e-3,
+      'strip: plastic strain %.6f, program %.6f' % (c[0][8], p[0][8]))
+
+# b) bead A
+lock = 4.73964 / 0.762
+s = rows(w + '/bead_a_short/strain_lock.dat')
+mid = min(s, key=lambda x: abs(x[0]))
+check(abs(mid[2] - lock) < 0.1, 'bead A: y/h at s = 0 after locking %.4f, lock depth %.4f' % (mid[2], lock))
+cl, pl = rows(w + '/bead_a_short/lock.dat'), rows(w + '/bead_a_short/program/lock.dat')
+
+
+def at(r, x, col):
+    for a, b in zip(r, r[1:]):
+        if a[0] <= x <= b[0]:
+            return a[col] + (b[col] - a[col]) * (x - a[0]) / (b[0] - a[0])
+    return float('nan')
+
+
+fc, fp = at(cl, 0.98 * lock, 2), at(pl, 0.98 * lock, 2)
+check(fc > 0 and rel(fp, fc) < 0.2, 'bead A: punch force at 98%% lock %.2f N/mm, program %.2f' % (fc, fp))
+nc, np_ = at(cl, 0.98 * lock, 8), at(pl, 0.98 * lock, 8)
+check(nc > 0 and rel(np_, nc) < 0.2, 'bead A: tension at 98%% lock %.2f N/mm, program %.2f' % (nc, np_))
+sys.exit(1 if bad else 0)
+PY
+then :; else fail=1; fi
+exit $fail
