@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# validation_table.sh -- the table of docs/validation.md "The contact section
+# against the continuum": each case kept under docs/validation/continuum/
+# (the converted CalculiX results of scripts/continuum_check.sh) against the
+# program on the same deck (input/<case>.nml) with the paper's section
+# (normal_stress = 'none') and with the contact section ('contact').
+#
+# Usage: scripts/validation_table.sh [--keep DIR]
+#   --keep DIR   keep the program's runs under DIR (default: a temporary
+#                directory, removed at the end)
+# Prints a markdown table: the continuum's value and the program's two, each
+# with its ratio to the continuum's.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+keep=""
+if [[ ${1:-} == --keep ]]; then keep=$2; fi
+work=${keep:-$(mktemp -d)}
+[[ -n $keep ]] || trap 'rm -rf "$work"' EXIT
+mkdir -p "$work"
+cd "$root"
+make -s >/dev/null
+for cdir in docs/validation/continuum/*/; do
+    case=$(basename "$cdir")
+    deck=input/$case.nml
+    [[ -f $deck ]] || { echo "validation_table.sh: no deck $deck for $cdir" >&2; exit 1; }
+    for v in none contact; do
+        out=$work/${case}_$v
+        mkdir -p "$out"
+        sed "s/^&sheet/\&sheet\n   normal_stress = '$v'/" "$deck" >"$out/deck.nml"
+        bin/drawbead "$out/deck.nml" -o "$out/run" >"$out/log" 2>&1 || true
+        python3 scripts/continuum_model.py "$out/log" "$out/model" >/dev/null
+        python3 scripts/continuum_results.py metrics "$out/run" "$out/model/continuum_model.json" \
+            >"$out/metrics.txt"
+    done
+done
+python3 - "$work" <<'PY'
+import glob, os, sys
+work = sys.argv[1]
+def read(path):
+    d = {}
+    for line in open(path):
+        if '=' in line and not line.startswith('#'):
+            k, v = line.split('=', 1)
+            d[k.strip()] = v.strip()
+    return d
+rows = [('punch force at 98% of full lock, N/mm', 'punch_force_98_N_per_mm'),
+        ('punch force at full lock, N/mm', 'punch_force_full_lock_N_per_mm'),
+        ('sheet tension at the end of locking, N/mm', 'lock_tension_N_per_mm'),
+        ('largest restraining force, N/mm', 'max_restraining_force_N_per_mm'),
+        ('... at pull delta/h (clamped: the continuum necks)', 'max_restraining_force_at_delta_over_h'),
+        ('peak mid-surface strain after locking', 'peak_strain_lock'),
+        ('straight-part mid-surface strain after locking', 'straight_strain_lock')]
+print('| case | quantity | continuum | paper section | ratio | contact section | ratio |')
+print('| --- | --- | ---: | ---: | ---: | ---: | ---: |')
+for cdir in sorted(glob.glob('docs/validation/continuum/*/')):
+    case = os.path.basename(cdir.rstrip('/'))
+    c = read(os.path.join(cdir, 'continuum_summary.txt'))
+    p = {v: read(os.path.join(work, case + '_' + v, 'metrics.txt')) for v in ('none', 'contact')}
+    s = {v: read(os.path.join(work, case + '_' + v, 'run', 'summary.txt')) for v in ('none', 'contact')}
+    def cell(d, k):
+        try:
+            x = float(d[k]); return x
+        except (KeyError, ValueError):
+            return None
+    for label, key in rows:
+        cv = cell(c, key)
+        vals = [cell(p[v], key) for v in ('none', 'contact')]
+        out = ['%.4g' % cv if cv is not None else 'none']
+        for x in vals:
+            out.append('%.4g' % x if x is not None else 'none')
+            out.append('%.3f' % (x / cv) if x is not None and cv else '')
+        print('| %s | %s | %s |' % (case, label, ' | '.join(out)))
+    tear = ['%.3g' % float(s[v]['tearing_delta_over_h']) if s[v].get('tearing_delta_over_h', 'none') != 'none'
+            else 'none' for v in ('none', 'contact')]
+    cr = ['%.3g' % float(s[v]['delta_cr_over_h']) if s[v].get('delta_cr_over_h', 'none') != 'none'
+          else 'none' for v in ('none', 'contact')]
+    print('| %s | tearing_delta_over_h (delta_cr_over_h) | | %s (%s) | | %s (%s) | |'
+          % (case, tear[0], cr[0], tear[1], cr[1]))
+PY
