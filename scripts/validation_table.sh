@@ -19,7 +19,7 @@ work=${keep:-$(mktemp -d)}
 mkdir -p "$work"
 cd "$root"
 make -s >/dev/null
-for cdir in docs/validation/continuum/*/; do
+for cdir in docs/validation/continuum/cc_*/; do
     case=$(basename "$cdir")
     deck=input/$case.nml
     [[ -f $deck ]] || { echo "validation_table.sh: no deck $deck for $cdir" >&2; exit 1; }
@@ -52,7 +52,7 @@ rows = [('punch force at 98% of full lock, N/mm', 'punch_force_98_N_per_mm'),
         ('straight-part mid-surface strain after locking', 'straight_strain_lock')]
 print('| case | quantity | continuum | paper section | ratio | contact section | ratio |')
 print('| --- | --- | ---: | ---: | ---: | ---: | ---: |')
-for cdir in sorted(glob.glob('docs/validation/continuum/*/')):
+for cdir in sorted(glob.glob("docs/validation/continuum/cc_*/")):
     case = os.path.basename(cdir.rstrip('/'))
     c = read(os.path.join(cdir, 'continuum_summary.txt'))
     p = {v: read(os.path.join(work, case + '_' + v, 'metrics.txt')) for v in ('none', 'contact')}
