@@ -83,19 +83,19 @@ contains
       real(dp) :: g(4), gm(4, 8), eps, rho, deps(4), drho(4), d2eps(4, 4), d2rho(4, 4)
       real(dp) :: force, moment, c(2, 2), beps(8), brho(8), hg(4, 4), dv, s1(8), s2(8)
       real(dp) :: ca(8), cb(8), hs(4, 8)
-      real(dp) :: face_stress(2), cs(2, 2), lam_f, zb_f, gs(8, 2)
+      real(dp) :: face_stress(2), cs(2, 2), lam_f(2), zb_f(2), gs(8, 2)
       integer :: ig, i, j, f, npt
       re = 0.0_dp
       ke = 0.0_dp
       gp = 0.0_dp
+      npt = size(wz)
       do ig = 1, n_gauss
          call element_gradients(gauss_xi(ig), le, ul, g, gm)
          call strain_measures(g, eps, rho, deps, drho, d2eps, d2rho)
-         npt = size(wz)
          do f = 1, 2
-            zb_f = hn(merge(1, npt, f == 1), ih_zbar, ig)
-            lam_f = 1.0_dp + eps + zb_f*rho
-            face_stress(f) = -face_force(f, ig)/lam_f
+            zb_f(f) = hn(merge(1, npt, f == 1), ih_zbar, ig)
+            lam_f(f) = 1.0_dp + eps + zb_f(f)*rho
+            face_stress(f) = -face_force(f, ig)/lam_f(f)
          end do
          call section_response(eps, rho, wz, mat, hn(:, :, ig), h1(:, :, ig), &
                                force, moment, c, pnewdt, face_stress, cs)
@@ -122,10 +122,8 @@ contains
          if (any(abs(cs) > 0.0_dp)) then
             ! the coupling to the contact pressure (module header)
             do f = 1, 2
-               zb_f = hn(merge(1, npt, f == 1), ih_zbar, ig)
-               lam_f = 1.0_dp + eps + zb_f*rho
-               gs(:, f) = -dface_force(:, f, ig)/lam_f &
-                          + face_force(f, ig)/lam_f**2*(beps + zb_f*brho)
+               gs(:, f) = -dface_force(:, f, ig)/lam_f(f) &
+                          + face_force(f, ig)/lam_f(f)**2*(beps + zb_f(f)*brho)
             end do
             ca = ca + dv*(cs(1, 1)*gs(:, 1) + cs(1, 2)*gs(:, 2))
             cb = cb + dv*(cs(2, 1)*gs(:, 1) + cs(2, 2)*gs(:, 2))
