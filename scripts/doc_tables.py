@@ -101,9 +101,10 @@ def real(summary, key):
     return None if value == "none" else float(value)
 
 
-def run_deck(program, deck_text_or_path, outdir, name):
+def run_deck(program, deck_text_or_path, outdir, name, one_thread=False):
     """Run one deck (a path, or the text of a deck) into outdir/name;
-    return its summary and the exit status."""
+    return its summary and the exit status.  one_thread: with
+    OMP_NUM_THREADS=1 (runs that share the machine)."""
     run_dir = os.path.join(outdir, name)
     if "\n" in deck_text_or_path:
         deck = os.path.join(outdir, name + ".nml")
@@ -112,7 +113,8 @@ def run_deck(program, deck_text_or_path, outdir, name):
     else:
         deck = deck_text_or_path
     with open(os.path.join(outdir, name + ".log"), "w", encoding="utf-8") as log:
-        status = subprocess.call([program, deck, "--output", run_dir], cwd=ROOT,
+        env = dict(os.environ, OMP_NUM_THREADS="1") if one_thread else None
+        status = subprocess.call([program, deck, "--output", run_dir], cwd=ROOT, env=env,
                                  stdout=log, stderr=subprocess.STDOUT)
     summary_path = os.path.join(run_dir, "summary.txt")
     summary = read_summary(summary_path) if os.path.exists(summary_path) else {}
@@ -123,7 +125,7 @@ def run_many(program, jobs, outdir, workers):
     """jobs: list of (name, deck path or text); returns {name: summary}."""
     results = {}
     with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
-        futures = {pool.submit(run_deck, program, deck, outdir, name): name
+        futures = {pool.submit(run_deck, program, deck, outdir, name, workers > 1): name
                    for name, deck in jobs}
         for fut in concurrent.futures.as_completed(futures):
             name = futures[fut]

@@ -144,6 +144,7 @@ contains
          call newton_solve(m, s, ld, kb, r, ctl%max_iterations, ctl%tolerance, nr, &
                            count_states=ctl%log_residuals)
          rec%newton_iterations = rec%newton_iterations + nr%iterations
+         rec%assemblies = rec%assemblies + nr%assemblies
          if (nr%status /= newton_ok) then
             rec%cutbacks = rec%cutbacks + 1
             select case (nr%status)

@@ -38,6 +38,7 @@ module record
       real(dp) :: peak_force = 0.0_dp, lock_force = 0.0_dp
       real(dp) :: last_lift = 0.0_dp
       integer :: increments = 0, newton_iterations = 0, cutbacks = 0
+      integer :: assemblies = 0   ! calls of the global assembly (solver's assemble)
       integer :: status = run_ok
       character(len=200) :: message = ''
       real(dp), allocatable :: pull_delta(:), pull_force(:)

@@ -14,6 +14,7 @@ module solver
    use section, only: section_localization, section_update_zbar, ih_eqps
    use model, only: model_type, state_type, load_type
    use contact, only: contact_station, contact_commit, ich_active
+   use material, only: material_builtin
    implicit none
    private
    public :: newton_result, assemble, newton_solve, commit_state, max_newton_history, &
@@ -33,6 +34,7 @@ module solver
       integer :: iterations = 0
       real(dp) :: residual(0:max_newton_history) = 0.0_dp ! scaled residual per iteration
       integer :: solve_info = 0                            ! band_solve's info when it failed
+      integer :: assemblies = 0                            ! calls of assemble (line search included)
       real(dp) :: pnewdt = 1.0_dp                          ! cut factor asked for (1: none)
       ! with count_states: the material points plastic in each iterate (their
       ! equivalent plastic strain above the converged one), and those that
@@ -45,6 +47,16 @@ module solver
 contains
 
    !> ASSEMBLE: residual and tangent of the whole sheet at the trial state s%u1.
+   !>
+   !> The elements are computed in parallel (OpenMP; OMP_NUM_THREADS threads)
+   !> into per-element arrays, then added to the band matrix, the residual,
+   !> the force scale and the tool forces serially in element order: the sums
+   !> are formed in the same order whatever the number of threads, so the
+   !> results are the same bit for bit (docs/performance.md).  A user's UMAT
+   !> is not known to be thread safe: with one the elements run serially.
+   !> As in a serial loop, the first element (in element order) that asks for
+   !> a cut decides pnewdt, and nothing after it is added; the trial state
+   !> (h1, c1, gp) is then not to be used.
    !>  m      [in]  model
    !>  s      [in,out] state: h1, c1 and gp are rewritten from hn, cn and u1
    !>  ld     [in]  applied loads and tool position
@@ -59,10 +71,16 @@ contains
       type(band_matrix), intent(inout) :: kb
       real(dp), intent(out) :: r(:), f_scale
       real(dp), intent(out) :: pnewdt
-      real(dp) :: re(8), ke(8, 8), le, ul(8), nv(4), dn(4), d2n(4), nm(2, 8), p(2)
-      real(dp) :: fc(2, n_gauss, 2), kc(2, 2, n_gauss, 2), dv, shifts(2), fn, dfn(2)
-      real(dp) :: nmg(2, 8, n_gauss), face_force(2, n_gauss), dface_force(8, 2, n_gauss)
-      integer :: e, ig, it, dofs(8), stat
+      ! per element: residual, tangent, the two parts of its force-scale
+      ! term, its pnewdt, and per Gauss station and tool the force on the
+      ! tool's account (dv fc) and whether the station is in contact
+      ! (on the heap: a large mesh must not overflow the stack)
+      real(dp), allocatable :: re_all(:, :), ke_all(:, :, :), fs_all(:, :), pn_all(:), &
+                               ft_all(:, :, :, :)
+      logical, allocatable :: on_all(:, :, :)
+      real(dp) :: shifts(2)
+      integer :: e, ig, it, stat
+      logical :: threads
       call band_zero(kb)
       r = 0.0_dp
       pnewdt = 1.0_dp
@@ -70,61 +88,130 @@ contains
       shifts = [0.0_dp, ld%tool_shift]
       s%tool_force = 0.0_dp
       s%n_contact = 0
+      allocate (re_all(8, m%n_el), ke_all(8, 8, m%n_el), fs_all(2, m%n_el), pn_all(m%n_el), &
+                ft_all(2, n_gauss, 2, m%n_el), on_all(n_gauss, 2, m%n_el))
+      threads = m%material%kind == material_builtin
+      ! each element writes only its own columns of h1, c1, gp and the
+      ! work arrays; dynamic chunks balance the plastic and contact
+      ! elements, which cost more and lie together
+      !$omp parallel do if (threads) default(none) schedule(dynamic, 4) &
+      !$omp shared(m, s, shifts, re_all, ke_all, fs_all, pn_all, ft_all, on_all)
       do e = 1, m%n_el
-         dofs = element_dofs(e)
-         le = m%x(e + 1) - m%x(e)
-         ul = s%u1(dofs)
-         ! contact first: with the contact section its normal forces load the
-         ! faces of the element's Gauss stations (tool 1, the upper tool, the
-         ! top face; tool 2 the bottom face)
-         face_force = 0.0_dp
-         dface_force = 0.0_dp
-         if (m%has_tools) then
-            do ig = 1, n_gauss
-               call hermite_shape(gauss_xi(ig), le, nv, dn, d2n)
-               nm = 0.0_dp
-               nm(1, v_dofs) = nv
-               nm(2, w_dofs) = nv
-               nmg(:, :, ig) = nm
-               p = matmul(nm, ul)
-               p(1) = p(1) + m%x(e) + gauss_xi(ig)*le
-               do it = 1, 2
-                  call contact_station(m%tool(it), shifts(it), m%penalty, m%contact_smoothing, m%friction, &
-                                       m%friction_eps, p, s%cn(:, ig, e, it), &
-                                       s%c1(:, ig, e, it), fc(:, ig, it), kc(:, :, ig, it), fn, dfn)
-                  if (m%contact_section .and. fn > 0.0_dp) then
-                     face_force(3 - it, ig) = fn
-                     dface_force(:, 3 - it, ig) = matmul(dfn, nm)
-                  end if
-               end do
-            end do
+         call assemble_element(m, e, shifts, s%u1, s%hn(:, :, :, e), s%h1(:, :, :, e), &
+                               s%cn(:, :, e, :), s%c1(:, :, e, :), s%gp(:, :, e), &
+                               re_all(:, e), ke_all(:, :, e), fs_all(:, e), pn_all(e), &
+                               ft_all(:, :, :, e), on_all(:, :, e))
+      end do
+      !$omp end parallel do
+      do e = 1, m%n_el
+         if (pn_all(e) < 1.0_dp) then
+            pnewdt = pn_all(e)
+            return
          end if
-         call element_internal(le, ul, m%wz, m%material, s%hn(:, :, :, e), s%h1(:, :, :, e), &
-                               re, ke, s%gp(:, :, e), pnewdt, face_force, dface_force)
-         if (pnewdt < 1.0_dp) return
-         ! moments (slope dofs) enter the force scale divided by the thickness
-         f_scale = f_scale + sum(re(1:8:2)**2) + sum((re(2:8:2)/m%thickness)**2)
+         f_scale = f_scale + fs_all(1, e) + fs_all(2, e)
          if (m%has_tools) then
             do ig = 1, n_gauss
-               dv = gauss_wt(ig)*le
                do it = 1, 2
-                  ! a station out of contact contributes nothing
-                  if (s%c1(ich_active, ig, e, it) < 0.5_dp) cycle
+                  if (.not. on_all(ig, it, e)) cycle
                   s%n_contact = s%n_contact + 1
-                  ! the tool pushes the sheet with fc: it enters r = f_int - f_ext with -
-                  re = re - dv*matmul(fc(:, ig, it), nmg(:, :, ig))
-                  s%tool_force(:, it) = s%tool_force(:, it) + dv*fc(:, ig, it)
-                  ke = ke - dv*matmul(transpose(nmg(:, :, ig)), matmul(kc(:, :, ig, it), nmg(:, :, ig)))
+                  s%tool_force(:, it) = s%tool_force(:, it) + ft_all(:, ig, it, e)
                end do
             end do
          end if
-         call band_add(kb, dofs, ke, stat)
-         r(dofs) = r(dofs) + re
+         call band_add(kb, element_dofs(e), ke_all(:, :, e), stat)
+         r(element_dofs(e)) = r(element_dofs(e)) + re_all(:, e)
       end do
       r = r - ld%f_ext
       if (ld%moment_node > 0) call add_end_moment(ld%moment_node, ld%moment, s%u1, r, kb)
       f_scale = sqrt(f_scale + sum(ld%f_ext**2) + (ld%moment/m%thickness)**2)
    end subroutine assemble
+
+   !> ASSEMBLE_ELEMENT: residual and tangent of element e with its contact
+   !> stations, at the trial dofs u1 (assemble adds them up).
+   !>  m       [in]  model
+   !>  e       [in]  the element
+   !>  shifts  [in]  vertical shift of tool 1, 2
+   !>  u1      [in]  trial dofs of the whole sheet
+   !>  hn, h1  [in], [out] the element's converged and trial section histories
+   !>                (npt, n_hist, n_gauss)
+   !>  cn, c1  [in], [out] its stations' converged and trial contact histories
+   !>                (n_chist, n_gauss, 2 tools)
+   !>  gp      [out] per Gauss point: eps, rho, N, M
+   !>  re, ke  [out] element residual f_int - f_contact (8) and tangent (8, 8)
+   !>  fs      [out] its terms of the force scale: sum of squared forces,
+   !>                sum of squared moments over the thickness
+   !>  pnewdt  [out] < 1 if a material point asks for a cut (then the other
+   !>                outputs are not to be used)
+   !>  ft      [out] (2, n_gauss, 2) force of each station on each tool's
+   !>                account, dv fc (0 out of contact)
+   !>  on      [out] (n_gauss, 2) the station is in contact with the tool
+   subroutine assemble_element(m, e, shifts, u1, hn, h1, cn, c1, gp, re, ke, fs, pnewdt, ft, on)
+      type(model_type), intent(in) :: m
+      integer, intent(in) :: e
+      real(dp), intent(in) :: shifts(2), u1(:)
+      real(dp), contiguous, intent(in) :: hn(:, :, :)
+      real(dp), contiguous, intent(out) :: h1(:, :, :)
+      real(dp), intent(in) :: cn(:, :, :)
+      real(dp), intent(inout) :: c1(:, :, :)
+      real(dp), intent(out) :: gp(:, :), re(8), ke(8, 8), fs(2), pnewdt, ft(2, n_gauss, 2)
+      logical, intent(out) :: on(n_gauss, 2)
+      real(dp) :: le, ul(8), nv(4), dn(4), d2n(4), nm(2, 8), p(2)
+      real(dp) :: fc(2, n_gauss, 2), kc(2, 2, n_gauss, 2), dv, fn, dfn(2)
+      real(dp) :: nmg(2, 8, n_gauss), face_force(2, n_gauss), dface_force(8, 2, n_gauss)
+      integer :: ig, it, dofs(8)
+      pnewdt = 1.0_dp
+      fs = 0.0_dp
+      ft = 0.0_dp
+      on = .false.
+      dofs = element_dofs(e)
+      le = m%x(e + 1) - m%x(e)
+      ul = u1(dofs)
+      ! contact first: with the contact section its normal forces load the
+      ! faces of the element's Gauss stations (tool 1, the upper tool, the
+      ! top face; tool 2 the bottom face)
+      face_force = 0.0_dp
+      dface_force = 0.0_dp
+      if (m%has_tools) then
+         do ig = 1, n_gauss
+            call hermite_shape(gauss_xi(ig), le, nv, dn, d2n)
+            nm = 0.0_dp
+            nm(1, v_dofs) = nv
+            nm(2, w_dofs) = nv
+            nmg(:, :, ig) = nm
+            p = matmul(nm, ul)
+            p(1) = p(1) + m%x(e) + gauss_xi(ig)*le
+            do it = 1, 2
+               call contact_station(m%tool(it), shifts(it), m%penalty, m%contact_smoothing, m%friction, &
+                                    m%friction_eps, p, cn(:, ig, it), &
+                                    c1(:, ig, it), fc(:, ig, it), kc(:, :, ig, it), fn, dfn)
+               if (m%contact_section .and. fn > 0.0_dp) then
+                  face_force(3 - it, ig) = fn
+                  dface_force(:, 3 - it, ig) = matmul(dfn, nm)
+               end if
+            end do
+         end do
+      end if
+      call element_internal(le, ul, m%wz, m%material, hn, h1, re, ke, gp, pnewdt, &
+                            face_force, dface_force)
+      if (pnewdt < 1.0_dp) return
+      ! moments (slope dofs) enter the force scale divided by the thickness
+      fs(1) = sum(re(1:8:2)**2)
+      fs(2) = sum((re(2:8:2)/m%thickness)**2)
+      if (m%has_tools) then
+         do ig = 1, n_gauss
+            dv = gauss_wt(ig)*le
+            do it = 1, 2
+               ! a station out of contact contributes nothing
+               if (c1(ich_active, ig, it) < 0.5_dp) cycle
+               on(ig, it) = .true.
+               ! the tool pushes the sheet with fc: it enters r = f_int - f_ext with -
+               re = re - dv*matmul(fc(:, ig, it), nmg(:, :, ig))
+               ft(:, ig, it) = dv*fc(:, ig, it)
+               ke = ke - dv*matmul(transpose(nmg(:, :, ig)), matmul(kc(:, :, ig, it), nmg(:, :, ig)))
+            end do
+         end do
+      end if
+   end subroutine assemble_element
 
    !> ADD_END_MOMENT: a conservative end moment M at node n, external work
    !> M theta with theta = atan2(w', 1 + v') the rotation of the tangent.
@@ -192,6 +279,7 @@ contains
       do it = 0, min(max_iter, max_newton_history)
          n_contact_prev = s%n_contact
          call assemble(m, s, ld, kb, r, f_scale, pnewdt)
+         res%assemblies = res%assemblies + 1
          res%iterations = it
          ! line search along the last correction du where the step changed
          ! the set of contact stations (the residual is not smooth there):
@@ -219,6 +307,7 @@ contains
             du = alpha*du
             g0 = alpha*g0
             call assemble(m, s, ld, kb, r, f_scale, pnewdt)
+            res%assemblies = res%assemblies + 1
             g1 = dot_product(du, merge(0.0_dp, r, ld%fixed))
          end do
          rnorm = scaled_norm(m, ld, r, f_scale)
@@ -314,6 +403,8 @@ contains
       type(state_type), intent(inout) :: s
       real(dp), intent(in) :: shift
       integer :: e, ig, it
+      ! each element's stations are independent: in parallel, like assemble
+      !$omp parallel do default(none) schedule(static) private(ig, it) shared(m, s)
       do e = 1, m%n_el
          do ig = 1, n_gauss
             s%indicator(ig, e) = section_localization(m%wz, s%h1(:, :, ig, e), &
@@ -326,6 +417,7 @@ contains
             end if
          end do
       end do
+      !$omp end parallel do
       s%u = s%u1
       s%gpn = s%gp
       s%hn = s%h1

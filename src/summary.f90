@@ -180,6 +180,7 @@ contains
       call add(text, 'increments = '//itoa(rec%increments))
       call add(text, 'newton_iterations = '//itoa(rec%newton_iterations))
       call add(text, 'cutbacks = '//itoa(rec%cutbacks))
+      call add(text, 'assemblies = '//itoa(rec%assemblies))
       call put(text, 'cpu_seconds', cpu, .true.)
       call write_text_file(path, text, ios, iomsg)
    end subroutine write_summary

@@ -16,13 +16,16 @@
 #   c) the round profile bead (input/round_bead.nml: profile files) on 24
 #      elements, locked and pulled 0.2h: exit 0;
 #   d) tests/decks/bad_wrong_type.nml (the input-error path): exit 1.
-# The four run two at a time.  Any valgrind error (invalid read or write,
+# The four run two at a time, one OpenMP thread each (OMP_NUM_THREADS=1:
+# batch runs take one thread each, and libgomp's pool thread, never joined,
+# would show as a possible leak).  Any valgrind error (invalid read or write,
 # use of an uninitialised value, a leak definitely or possibly lost) fails
 # the check, which prints valgrind's report.  About 10 s on 2 cores (plus
 # the first build).  Skipped
 # (exit 0) if valgrind is not installed.  Exit status 0 if all pass, 1 if
 # any fails, 2 if the test cannot run.
 set -u
+export OMP_NUM_THREADS=1
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
 

@@ -20,7 +20,7 @@
 #   - text ('none', status, phase names) and the exit status exactly;
 #   - a key missing from the run, or a key the reference lacks (a new
 #     summary value: run --update), is a difference.
-# Not compared: increments, newton_iterations and cutbacks (they are
+# Not compared: increments, newton_iterations, cutbacks and assemblies (they are
 # recorded in the references, so that a change shows in the diff of
 # --update, but the step control may take another path for round-off
 # reasons on another compiler without a visible change of the results),
@@ -170,7 +170,7 @@ compare() {
             if (line ~ /^#/ || !index(line, "=")) return
             k = line; sub(/=.*/, "", k); gsub(/^[ \t]+|[ \t]+$/, "", k)
             v = substr(line, index(line, "=") + 1); gsub(/^[ \t]+|[ \t]+$/, "", v)
-            if (k == "cpu_seconds" || k == "increments" || k == "newton_iterations" || k == "cutbacks") return
+            if (k == "cpu_seconds" || k == "increments" || k == "newton_iterations" || k == "cutbacks" || k == "assemblies") return
             if (index(skip, "," k ",")) return
             if (which == 1) { ref[k] = v; order[++n] = k } else got[k] = v
         }
