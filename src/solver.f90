@@ -403,7 +403,8 @@ contains
       type(state_type), intent(inout) :: s
       real(dp), intent(in) :: shift
       integer :: e, ig, it
-      ! each element's stations are independent: in parallel, like assemble
+      ! each element's stations are independent: in parallel, like assemble,
+      ! copies included (the history is the largest array of a run)
       !$omp parallel do default(none) schedule(static) private(ig, it) shared(m, s)
       do e = 1, m%n_el
          do ig = 1, n_gauss
@@ -416,12 +417,12 @@ contains
                end do
             end if
          end do
+         s%gpn(:, :, e) = s%gp(:, :, e)
+         s%hn(:, :, :, e) = s%h1(:, :, :, e)
+         s%cn(:, :, e, :) = s%c1(:, :, e, :)
       end do
       !$omp end parallel do
       s%u = s%u1
-      s%gpn = s%gp
-      s%hn = s%h1
-      s%cn = s%c1
       s%shift = shift
    end subroutine commit_state
 end module solver
