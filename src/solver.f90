@@ -396,15 +396,18 @@ contains
    !> COMMIT_STATE: accept the trial state as converged; update the lagged
    !> station distances and the localization indicator of every Gauss station.
    !>  m  [in]  model
-   !>  s  [in,out] state: u <- u1, hn <- h1, cn <- c1 (committed friction history)
+   !>  s  [in,out] state: u <- u1, hn <- h1, cn <- c1 (committed friction
+   !>           history), gpn <- gp; h1, c1 and gp are exchanged with them,
+   !>           so they hold the previous converged state until the next
+   !>           assemble rewrites them
    !>  shift [in] the lower tool's rise at this state
    subroutine commit_state(m, s, shift)
       type(model_type), intent(in) :: m
       type(state_type), intent(inout) :: s
       real(dp), intent(in) :: shift
       integer :: e, ig, it
-      ! each element's stations are independent: in parallel, like assemble,
-      ! copies included (the history is the largest array of a run)
+      real(dp), allocatable :: swap4(:, :, :, :), swap3(:, :, :)
+      ! each element's stations are independent: in parallel, like assemble
       !$omp parallel do default(none) schedule(static) private(ig, it) shared(m, s)
       do e = 1, m%n_el
          do ig = 1, n_gauss
@@ -417,11 +420,21 @@ contains
                end do
             end if
          end do
-         s%gpn(:, :, e) = s%gp(:, :, e)
-         s%hn(:, :, :, e) = s%h1(:, :, :, e)
-         s%cn(:, :, e, :) = s%c1(:, :, e, :)
       end do
       !$omp end parallel do
+      ! the trial arrays become the converged ones by exchanging them, not
+      ! by copying (the history is the largest array of a run): the trial
+      ! arrays then hold the previous converged state, which the next
+      ! assemble overwrites before anything reads them
+      call move_alloc(s%hn, swap4)
+      call move_alloc(s%h1, s%hn)
+      call move_alloc(swap4, s%h1)
+      call move_alloc(s%cn, swap4)
+      call move_alloc(s%c1, s%cn)
+      call move_alloc(swap4, s%c1)
+      call move_alloc(s%gpn, swap3)
+      call move_alloc(s%gp, s%gpn)
+      call move_alloc(swap3, s%gp)
       s%u = s%u1
       s%shift = shift
    end subroutine commit_state
