@@ -118,8 +118,8 @@ contains
       end if
       do i = 1, n
          if (bound < huge(1.0_dp)) then
-            lbx = max(tool%seg(i)%box(1) - p(1), 0.0_dp, p(1) - tool%seg(i)%box(2))
-            lby = max(tool%seg(i)%box(3) - p(2), 0.0_dp, p(2) - tool%seg(i)%box(4))
+            lbx = max(tool%box(1, i) - p(1), 0.0_dp, p(1) - tool%box(2, i))
+            lby = max(tool%box(3, i) - p(2), 0.0_dp, p(2) - tool%box(4, i))
             if (lbx*lbx + lby*lby > (min(best, bound) + tol)**2) cycle
          end if
          call piece_distance(tool%seg(i), p, dist, clamp)

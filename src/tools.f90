@@ -70,6 +70,9 @@ module tools
       integer :: nseg = 0
       integer :: side = 0              ! +1 upper (material above), -1 lower
       real(dp) :: size = 0.0_dp        ! larger side of the chain's bounding box, mm
+      !> (4, nseg) the pieces' boxes (seg(i)%box) side by side: tool_gap
+      !> scans them for every station, and a piece's record is 26 words
+      real(dp), allocatable :: box(:, :)
    end type tool_type
 
 contains
@@ -168,6 +171,7 @@ contains
       if (ibad /= 0) return
       tool%nseg = size(segs)
       tool%seg = segs
+      tool%box = reshape([(segs(ibad)%box, ibad=1, size(segs))], [4, size(segs)])
       tool%side = side
       call chain_extent(segs, xmn, xmx, ymn, ymx)
       tool%size = max(xmx - xmn, ymx - ymn)
