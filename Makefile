@@ -159,6 +159,9 @@ $(UMAT_DIR)/%.o: src/user/%.f90 $(BUILD)/kinds.o $(FLAGS_STAMP)
 	@mkdir -p $(@D)
 	$(FC) $(FFLAGS) -I $(BUILD) -J $(UMAT_DIR) -c -o $@ $<
 
+# umat_none reports its error through module errors
+$(UMAT_DIR)/umat_none.o: $(BUILD)/errors.o
+
 $(UMAT_DIR)/umat_example.o: $(UMAT_EXAMPLE) $(BUILD)/kinds.o $(FLAGS_STAMP)
 	@mkdir -p $(@D)
 	$(FC) $(FFLAGS) -I $(BUILD) -J $(UMAT_DIR) -c -o $@ $<
