@@ -47,6 +47,7 @@
 #                     otherwise ignored, so that the default really is the
 #                     release flags (add -fopenmp for threads)
 #   --no-build        do not run make; use the existing binary
+#   --bin PATH        run the program PATH (implies --no-build)
 #   --keep DIR        write the run outputs under DIR and keep them
 #                     (default: a temporary directory, removed at the end)
 #   --markdown        print the tables as GitHub markdown tables
@@ -74,6 +75,7 @@ do_scaling=1
 build_dir=${BENCH_BUILD_DIR:-}
 fflags=${BENCH_FFLAGS:-}
 do_build=1
+bin_given=''
 keep_dir=''
 markdown=0
 decks=()
@@ -123,6 +125,12 @@ while (($# > 0)); do
         --no-build)
             do_build=0
             shift
+            ;;
+        --bin)
+            need_value "a program" "$@"
+            bin_given=$2
+            do_build=0
+            shift 2
             ;;
         --keep)
             need_value "a directory" "$@"
@@ -196,6 +204,12 @@ if ((do_build)); then
     # FFLAGS from the environment would override the Makefile's release flags
     unset FFLAGS
     build_program "${make_args[@]}" all
+fi
+if [[ -n $bin_given ]]; then
+    bin=$bin_given
+    [[ $bin == /* || ! -e $bin ]] || bin=$PWD/$bin
+    # the flags of a given program are not known
+    stamp=''
 fi
 [[ -x $bin ]] || die "no executable '$bin' (build it first, or drop --no-build)"
 
@@ -386,7 +400,7 @@ fi
 # Tables
 # ---------------------------------------------------------------------------
 flags='?'
-[[ -f $stamp ]] && flags=$(<"$stamp")
+[[ -n $stamp && -f $stamp ]] && flags=$(<"$stamp")
 info=("drawbead benchmark: $runs run(s) per deck and thread count, wall seconds"
     "binary: $bin"
     "compiler and flags: $flags"

@@ -27,6 +27,11 @@
 #      curves with N/mm headers and the LS-DYNA keyword file
 #   f) shellcheck (if installed) finds nothing in the batch scripts, the
 #      test scripts and scripts/lib.sh
+#   g) bench.sh on a 20-element strip with 1 and 2 threads and a scaling
+#      table (10, 20 elements): a row per thread count with the counters
+#      from summary.txt and the per-assembly and per-point times, total
+#      rows, the scaling rows; --markdown gives the tables as markdown; a
+#      bad --threads value is a usage error (exit 2)
 # Prints one line per check; exit status 0 if all pass, 1 if any fails,
 # 2 if the test cannot run.
 set -u
@@ -317,6 +322,46 @@ check "LS-DYNA keyword file with two curves" \
 if command -v shellcheck >/dev/null 2>&1; then
     echo "== f) shellcheck"
     check "shellcheck: every script of scripts/, tests/ and tests/regression/" shellcheck scripts/*.sh tests/*.sh tests/regression/*.sh
+fi
+
+# ---------------------------------------------------------------------------
+# g) bench.sh
+# ---------------------------------------------------------------------------
+echo "== g) bench.sh"
+# (the awk and bash programs below are meant literally: SC2016)
+strip=tests/decks/strip_tension.nml
+scripts/bench.sh --bin "$prog" -n 2 --threads 1,2 --scaling "$strip" --elements 10,20 "$strip" \
+    >"$tmp/g.out" 2>"$tmp/g.err"
+rc=$?
+check "bench.sh exits 0 (got $rc)" test "$rc" -eq 0
+asm=$(awk -F' = ' '$1 == "assemblies" { print $2 }' "$tmp/out/fig6_beadB_steel/summary.txt")
+# shellcheck disable=SC2016
+check "summary.txt has assemblies, at least one per iteration" \
+    awk -v a="$asm" -F' = ' '$1 == "newton_iterations" { ok = (a ~ /^[0-9]+$/ && a + 0 >= $2 + 0) } END { exit !ok }' \
+    "$tmp/out/fig6_beadB_steel/summary.txt"
+for n in 1 2; do
+    # deck threads median min max cpu increments iterations assemblies cutbacks us/asm ns/pt status
+    # shellcheck disable=SC2016
+    check "bench.sh: a row for $n thread(s) with counters and per-unit times" \
+        awk -v n="$n" '$1 == "strip_tension" && $2 == n && $9 ~ /^[0-9]+$/ && $9 + 0 >= $8 + 0 &&
+            $11 ~ /^[0-9]+$/ && $12 ~ /^[0-9.]+$/ && $13 == "localized" { found = 1 } END { exit !found }' "$tmp/g.out"
+    check "bench.sh: a total row for $n thread(s)" grep -q "^total  *$n " "$tmp/g.out"
+    for nel in 10 20; do
+        # shellcheck disable=SC2016
+        check "bench.sh: a scaling row for $nel elements, $n thread(s)" \
+            awk -v n="$n" -v e="$nel" '$1 == e && $2 == n && $7 ~ /^[0-9.]+$/ && $8 ~ /^[0-9.]+$/ { found = 1 } END { exit !found }' "$tmp/g.out"
+    done
+done
+scripts/bench.sh --bin "$prog" -n 1 --threads 2 --no-scaling --markdown "$strip" >"$tmp/g2.out" 2>>"$tmp/g.err"
+# shellcheck disable=SC2016
+check "bench.sh --markdown: a markdown row, no scaling table" \
+    bash -c 'grep -q "^| strip_tension | 2 | " "$1" && ! grep -q "^| elements " "$1"' _ "$tmp/g2.out"
+scripts/bench.sh --bin "$prog" --threads 1,x "$strip" >/dev/null 2>&1
+rc=$?
+check "bench.sh --threads 1,x is a usage error (exit 2, got $rc)" test "$rc" -eq 2
+if ((failures > 0)); then
+    echo "--- bench.sh stderr:"
+    cat "$tmp/g.err"
 fi
 
 echo "scripts.sh: $checks checks, $failures failed"
