@@ -9,7 +9,7 @@
 #   make valgrind [DECK=...]  build bin/drawbead-generic in build-generic/
 #                        (ARCH_FLAGS empty) and run $(DECK) under valgrind
 #   make clean           remove build/, build-check/, bin/ and out/
-#   OMP_NUM_THREADS=n bin/drawbead ...  run the assembly on n threads
+#   OMP_NUM_THREADS=n bin/drawbead ...  run the assembly on n threads (default 1)
 #   make help            list the targets and variables
 #
 # Variables (override on the command line): FC, FFLAGS, ARCH_FLAGS, OPENMP_FLAGS, CHECK_FFLAGS,
@@ -34,7 +34,8 @@ PYTHON ?= python3
 # it fig9d took 4% longer).
 #
 # OPENMP_FLAGS: the assembly runs its elements on OMP_NUM_THREADS threads
-# (the results do not depend on the number: docs/performance.md); it is
+# (one if it is unset; the results do not depend on the number:
+# docs/performance.md); it is
 # part of the release and checked flags and of the link.  Give
 # OPENMP_FLAGS= for a serial program.  An FFLAGS of your own needs
 # -fopenmp in it for threads.

@@ -20,6 +20,7 @@ program drawbead
                      open_snapshots
    use summary, only: write_summary
    use os, only: install_stop_handlers
+   use solver, only: default_threads
    implicit none
    character(len=*), parameter :: version = '1.1.0'
    !> room for a deck or directory name on the command line (as in the deck)
@@ -41,6 +42,7 @@ program drawbead
 
    call parse_command_line(path, out_override)
    call install_stop_handlers()
+   call default_threads()
 
    ! set-up: every error of the deck and of the files it names, together
    call read_deck(trim(path), d, errs)

@@ -18,7 +18,8 @@ module solver
    implicit none
    private
    public :: newton_result, assemble, newton_solve, commit_state, max_newton_history, &
-             newton_ok, newton_diverged, newton_cutback, newton_singular, newton_solve_failed
+             newton_ok, newton_diverged, newton_cutback, newton_singular, newton_solve_failed, &
+             default_threads
 
    integer, parameter :: max_newton_history = 100
    !> newton_result%status: converged; diverged or too many iterations; a
@@ -45,6 +46,20 @@ module solver
    end type newton_result
 
 contains
+
+   !> DEFAULT_THREADS: the number of threads of the assembly when the user
+   !> has not chosen one: one, unless OMP_NUM_THREADS is set (then OpenMP
+   !> takes it).  Threads pay only on free cores; on a busy machine a run
+   !> with more threads than free cores is many times slower, since its
+   !> threads meet at every assembly (docs/performance.md).  The results
+   !> do not depend on the number.  Called once by the main program, before
+   !> any parallel loop; without OpenMP it does nothing.
+   subroutine default_threads()
+      !$ use omp_lib, only: omp_set_num_threads
+      integer :: length, stat
+      call get_environment_variable('OMP_NUM_THREADS', length=length, status=stat)
+      !$ if (stat /= 0 .or. length == 0) call omp_set_num_threads(1)
+   end subroutine default_threads
 
    !> ASSEMBLE: residual and tangent of the whole sheet at the trial state s%u1.
    !>
