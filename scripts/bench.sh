@@ -35,7 +35,8 @@
 #   --threads LIST    thread counts, comma-separated (default 1,2; env
 #                     BENCH_THREADS)
 #   --scaling DECK    the deck of the scaling table (default
-#                     input/fig5a_beadA_steel.nml; env BENCH_SCALING_DECK)
+#                     input/fig7c_beadB_steel_mu0.nml, locking only: a
+#                     short run on 640 elements; env BENCH_SCALING_DECK)
 #   --elements LIST   its element counts, comma-separated (default
 #                     80,160,320,640; env BENCH_ELEMENTS)
 #   --no-scaling      no scaling table
@@ -178,7 +179,7 @@ for deck in "${decks[@]}"; do
     [[ -f $deck && -r $deck ]] || die "cannot read deck '$deck'"
 done
 if ((do_scaling)); then
-    [[ -n $scaling_deck ]] || scaling_deck=$root/input/fig5a_beadA_steel.nml
+    [[ -n $scaling_deck ]] || scaling_deck=$root/input/fig7c_beadB_steel_mu0.nml
     [[ -f $scaling_deck && -r $scaling_deck ]] || die "cannot read the scaling deck '$scaling_deck'"
     grep -qi '^ *&sheet' "$scaling_deck" || die "the scaling deck '$scaling_deck' has no &sheet group"
 fi
