@@ -124,7 +124,7 @@ module deck
       real(dp) :: tolerance = 1.0e-8_dp               ! relative residual and correction
       real(dp) :: max_force_change = 0.1_dp           ! target relative change of F (lock) or N (pull) per increment
       real(dp) :: squeeze_force_change = 0.02_dp      ! the same where F rises faster than H^5 while locking
-      real(dp) :: step_tolerance = 2.0e-3_dp          ! local error of the force path per increment (0: off)
+      real(dp) :: step_tolerance = 5.0e-3_dp          ! local error of the force path per increment (0: off)
    end type deck_type
 
 contains
