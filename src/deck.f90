@@ -161,8 +161,8 @@ contains
       if (is_unset(d%h2)) d%h2 = bead_a_over_h(6)*h
       if (is_unset(d%pull_distance)) d%pull_distance = 10.0_dp*h
       if (is_unset(d%min_increment)) d%min_increment = 1.0e-6_dp*h
-      ! 0.1h resolves the friction history (which starts at the first
-      ! converged state in contact) and the force curves
+      ! 0.1h resolves the force curves; where the path turns, the error
+      ! estimate of the step control (step_tolerance) shortens it
       if (is_unset(d%max_increment)) d%max_increment = 0.1_dp*h
       if (is_unset(d%initial_increment)) then
          d%initial_increment = 0.05_dp*h
