@@ -119,7 +119,7 @@ contains
          ! counts; da/dp = d_old/(d - d_old)^2 n
          dold = min(chn(ich_penetration), 0.0_dp)
          a = d/(d - dold)
-         dslip = a*dslip + ds*(dold/(d - dold)**2)*n
+         dslip = a*dslip + ds*((dold/(d - dold))/(d - dold))*n
          ds = a*ds
       end if
       if (chn(ich_active) < 0.5_dp .or. abs(chn(ich_sense)) < 0.5_dp) then

@@ -18,7 +18,8 @@ module step_control
    !> an increment whose error estimate exceeds this many times
    !> step_tolerance is redone (its successor would be less than half as long)
    real(dp), parameter :: error_redo_ratio = 4.0_dp
-   !> safety factor on the increment the error estimate allows
+   !> safety factor on the increment the error estimate allows (below it
+   !> the increment is shortened)
    real(dp), parameter :: error_safety = 0.8_dp
    !> the error estimate grows an increment by at most this factor
    real(dp), parameter :: max_growth = 2.0_dp
@@ -85,10 +86,18 @@ contains
    !> JUDGE_ERROR: whether an increment with the error estimate err must be
    !> redone, and the increment that the estimate allows next.  The error
    !> being second order, the increment that meets step_tolerance is
-   !> dt sqrt(tol/err), taken with the safety factor 0.8 and within
-   !> [cutback_factor, 2] dt; an estimate above 4 tol is redone with it
+   !> q dt with q = 0.8 sqrt(tol/err) (0.8 a safety factor), taken within
+   !> [cutback_factor, 2] and rounded down to a multiple of 1/32.  Rounded:
+   !> err is a difference of nearly equal forces, known to the Newton
+   !> tolerance; an increment sized continuously by it would follow that
+   !> noise, and so would the path of the increments and the results (two
+   !> builds of the program, whose round-off differs, then disagreed by
+   !> 1e-5 where tests/regression holds them to 1e-6).  On the lattice of
+   !> 1/32 the noise (about 1e-8 of q) changes the factor only when q lies
+   !> that close to a multiple of 1/32.  An estimate above 4 tol is redone
    !> (unless the increment is already within 4 min_increment).  A negative
-   !> err (no estimate: the first increment of a phase) allows 2 dt.
+   !> or zero err (no estimate: the first increment of a phase; a straight
+   !> path) or step_tolerance = 0 allows 2 dt.
    !>  ctl     [in]  controls (step_tolerance, min_increment)
    !>  err     [in]  the estimate (extrapolation_error), < 0: none
    !>  dt      [in]  the increment just converged
@@ -99,11 +108,12 @@ contains
       real(dp), intent(in) :: err, dt
       logical, intent(out) :: redo
       real(dp), intent(out) :: dt_err
+      real(dp) :: q
       redo = .false.
       dt_err = max_growth*dt
-      if (err < 0.0_dp .or. ctl%step_tolerance <= 0.0_dp) return
-      if (err > 0.0_dp) dt_err = dt*min(max_growth, max(cutback_factor, &
-                                                          error_safety*sqrt(ctl%step_tolerance/err)))
+      if (err <= 0.0_dp .or. ctl%step_tolerance <= 0.0_dp) return
+      q = min(max_growth, max(cutback_factor, error_safety*sqrt(ctl%step_tolerance/err)))
+      dt_err = (aint(32.0_dp*q)/32.0_dp)*dt
       redo = err > error_redo_ratio*ctl%step_tolerance .and. dt > 4.0_dp*ctl%min_increment
    end subroutine judge_error
 
