@@ -18,7 +18,7 @@
 !>              penalty, friction, friction_eps, contact_smoothing
 !>   &loading   lock_depth, pull_distance, initial_increment,
 !>              min_increment, max_increment, max_iterations, tolerance,
-!>              max_force_change, squeeze_force_change
+!>              max_force_change, squeeze_force_change, step_tolerance
 !>
 !> Units: lengths mm, stresses MPa, forces per unit width N/mm; penalty is
 !> k h / E, friction_eps is in units of h. Text values must be quoted.
@@ -124,6 +124,7 @@ module deck
       real(dp) :: tolerance = 1.0e-8_dp               ! relative residual and correction
       real(dp) :: max_force_change = 0.1_dp           ! target relative change of F (lock) or N (pull) per increment
       real(dp) :: squeeze_force_change = 0.02_dp      ! the same where F rises faster than H^5 while locking
+      real(dp) :: step_tolerance = 5.0e-3_dp          ! local error of the force path per increment (0: off)
    end type deck_type
 
 contains
@@ -160,8 +161,8 @@ contains
       if (is_unset(d%h2)) d%h2 = bead_a_over_h(6)*h
       if (is_unset(d%pull_distance)) d%pull_distance = 10.0_dp*h
       if (is_unset(d%min_increment)) d%min_increment = 1.0e-6_dp*h
-      ! 0.1h resolves the friction history (which starts at the first
-      ! converged state in contact) and the force curves
+      ! 0.1h resolves the force curves; where the path turns, the error
+      ! estimate of the step control (step_tolerance) shortens it
       if (is_unset(d%max_increment)) d%max_increment = 0.1_dp*h
       if (is_unset(d%initial_increment)) then
          d%initial_increment = 0.05_dp*h
@@ -406,6 +407,8 @@ contains
                       lo=1.0e-3_dp, hi=0.5_dp, hi_open=.true.)
       call check_real(errs, at(p, 'loading', 'max_force_change'), d%max_force_change, &
                       lo=1.0e-3_dp, hi=0.5_dp, hi_open=.true.)
+      call check_real(errs, at(p, 'loading', 'step_tolerance'), d%step_tolerance, &
+                      lo=0.0_dp, hi=0.5_dp, hi_open=.true.)
    end subroutine validate_deck
 
    !> check_real -- require a finite real within optional bounds.

@@ -421,10 +421,11 @@ contains
       character(len=echo_len), intent(out) :: lines(echo_rows)
 
       real(dp) :: lock_depth, pull_distance, initial_increment, min_increment, &
-                  max_increment, tolerance, squeeze_force_change, max_force_change
+                  max_increment, tolerance, squeeze_force_change, max_force_change, step_tolerance
       integer :: max_iterations
       namelist /loading/ lock_depth, pull_distance, initial_increment, min_increment, &
-         max_increment, max_iterations, tolerance, squeeze_force_change, max_force_change
+         max_increment, max_iterations, tolerance, squeeze_force_change, max_force_change, &
+         step_tolerance
 
       lock_depth = d%lock_depth
       pull_distance = d%pull_distance
@@ -435,6 +436,7 @@ contains
       tolerance = d%tolerance
       squeeze_force_change = d%squeeze_force_change
       max_force_change = d%max_force_change
+      step_tolerance = d%step_tolerance
       select case (action)
       case (act_read_unit)
          read (unit, nml=loading, iostat=ios, iomsg=msg)
@@ -454,6 +456,7 @@ contains
       d%tolerance = tolerance
       d%squeeze_force_change = squeeze_force_change
       d%max_force_change = max_force_change
+      d%step_tolerance = step_tolerance
    end subroutine nml_loading
 
    !> put_lines -- write namelist output lines, dropping the blank padding

@@ -13,7 +13,7 @@ module solver
    use element, only: element_internal, v_dofs, w_dofs
    use section, only: section_localization, section_update_zbar, ih_eqps
    use model, only: model_type, state_type, load_type
-   use contact, only: contact_station, contact_commit, ich_active
+   use contact, only: contact_station, ich_active
    implicit none
    private
    public :: newton_result, assemble, newton_solve, commit_state, max_newton_history, &
@@ -307,23 +307,19 @@ contains
    !> COMMIT_STATE: accept the trial state as converged; update the lagged
    !> station distances and the localization indicator of every Gauss station.
    !>  m  [in]  model
-   !>  s  [in,out] state: u <- u1, hn <- h1, cn <- c1 (committed friction history)
+   !>  s  [in,out] state: u <- u1, hn <- h1, cn <- c1 (the contact histories,
+   !>              integrated to the trial state by contact_station)
    !>  shift [in] the lower tool's rise at this state
    subroutine commit_state(m, s, shift)
       type(model_type), intent(in) :: m
       type(state_type), intent(inout) :: s
       real(dp), intent(in) :: shift
-      integer :: e, ig, it
+      integer :: e, ig
       do e = 1, m%n_el
          do ig = 1, n_gauss
             s%indicator(ig, e) = section_localization(m%wz, s%h1(:, :, ig, e), &
                                                       m%thickness, m%youngs)
             call section_update_zbar(m%z, s%h1(:, :, ig, e))
-            if (m%has_tools) then
-               do it = 1, 2
-                  call contact_commit(s%c1(:, ig, e, it))
-               end do
-            end if
          end do
       end do
       s%u = s%u1
