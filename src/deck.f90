@@ -85,6 +85,7 @@ module deck
       character(len=16) :: left_edge = 'clamped'      ! 'clamped' | 'free'
       real(dp) :: back_tension = 0.0_dp               ! N/mm, with 'free' only
       character(len=16) :: normal_stress = 'contact'  ! 'contact' | 'none' (the paper's plane-stress section)
+      real(dp) :: strain_gradient = unset             ! the necking length term; default 1 with 'contact', 0 with 'none'
       ! &material
       real(dp) :: youngs_modulus = 207000.0_dp        ! MPa
       real(dp) :: poissons_ratio = 0.3_dp
@@ -153,6 +154,7 @@ contains
       if (is_positive(d%thickness)) h = d%thickness
 
       if (is_unset(d%length)) d%length = 50.0_dp*h
+      if (is_unset(d%strain_gradient)) d%strain_gradient = merge(1.0_dp, 0.0_dp, d%normal_stress == 'contact')
       if (is_unset(d%r1)) d%r1 = bead_a_over_h(1)*h
       if (is_unset(d%r2)) d%r2 = bead_a_over_h(2)*h
       if (is_unset(d%b1)) d%b1 = bead_a_over_h(3)*h
@@ -245,6 +247,7 @@ contains
       call check_real(errs, at(p, 'sheet', 'back_tension'), d%back_tension, lo=0.0_dp)
       call check_choice(errs, at(p, 'sheet', 'normal_stress'), d%normal_stress, &
                         [character(len=16) :: 'contact', 'none'])
+      call check_real(errs, at(p, 'sheet', 'strain_gradient'), d%strain_gradient, lo=0.0_dp, hi=100.0_dp)
       ! the contact section prescribes tau22 through the built-in law's
       ! reduction to plane stress (docs/theory.md §12), which a user's UMAT
       ! does not offer

@@ -266,11 +266,11 @@ contains
       character(len=*), intent(inout) :: msg
       character(len=echo_len), intent(out) :: lines(echo_rows)
 
-      real(dp) :: thickness, length, mesh_beta, back_tension
+      real(dp) :: thickness, length, mesh_beta, back_tension, strain_gradient
       integer :: n_elements
       character(len=16) :: left_edge, normal_stress
       namelist /sheet/ thickness, length, n_elements, mesh_beta, left_edge, back_tension, &
-         normal_stress
+         normal_stress, strain_gradient
 
       thickness = d%thickness
       length = d%length
@@ -279,6 +279,7 @@ contains
       left_edge = d%left_edge
       back_tension = d%back_tension
       normal_stress = d%normal_stress
+      strain_gradient = d%strain_gradient
       select case (action)
       case (act_read_unit)
          read (unit, nml=sheet, iostat=ios, iomsg=msg)
@@ -296,6 +297,7 @@ contains
       d%left_edge = left_edge
       d%back_tension = back_tension
       d%normal_stress = normal_stress
+      d%strain_gradient = strain_gradient
    end subroutine nml_sheet
 
    !> nml_material -- namelist &material (arguments as group_io).

@@ -70,6 +70,9 @@ contains
       m%friction_eps = d%friction_eps*h
       m%left_edge_free = d%left_edge == 'free'
       m%contact_section = d%normal_stress == 'contact'
+      ! the strain-gradient term (docs/theory.md §12.7): strain_gradient
+      ! times tau* h^3/12, tau* the plane-strain flow stress at the maximum load
+      m%gradient = d%strain_gradient*m%max_load_stress*h**3/12.0_dp
       m%back_tension = d%back_tension
       m%lock_depth = d%lock_depth
       m%pull_distance = d%pull_distance

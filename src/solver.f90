@@ -100,7 +100,7 @@ contains
             end do
          end if
          call element_internal(le, ul, m%wz, m%material, s%hn(:, :, :, e), s%h1(:, :, :, e), &
-                               re, ke, s%gp(:, :, e), pnewdt, face_force, dface_force)
+                               re, ke, s%gp(:, :, e), pnewdt, face_force, dface_force, m%gradient)
          if (pnewdt < 1.0_dp) return
          ! moments (slope dofs) enter the force scale divided by the thickness
          f_scale = f_scale + sum(re(1:8:2)**2) + sum((re(2:8:2)/m%thickness)**2)
