@@ -51,9 +51,6 @@ PAPER_DECKS = [
     "fig7d_beadA_steel_mu01", "fig9a_beadA_brass_free", "fig9b_beadA_steel_free_mu02",
     "fig9c_beadA_steel_free", "fig9d_beadB_steel_free", "strip_tension",
 ]
-STEP_DECKS = ["fig5a_beadA_steel", "fig6_beadB_steel", "fig7b_beadA_steel_mu0",
-              "fig7c_beadB_steel_mu0", "fig9c_beadA_steel_free", "fig9d_beadB_steel_free"]
-
 
 class Num:
     """A number of a table: its value and the format it is shown with."""
@@ -137,27 +134,6 @@ def run_many(program, jobs, outdir, workers):
     return results
 
 
-def with_loading(deck_path, line):
-    """The text of a deck with one more line at the top of its &loading group."""
-    with open(os.path.join(ROOT, deck_path), encoding="utf-8") as f:
-        text = f.read()
-    new, n = re.subn(r"(?im)^&loading\s*$", "&loading\n   " + line, text, count=1)
-    if n != 1:
-        raise RuntimeError(f"{deck_path}: no &loading line to add {line!r} to")
-    return new
-
-
-def thickness_of(deck_path):
-    with open(os.path.join(ROOT, deck_path), encoding="utf-8") as f:
-        m = re.search(r"(?im)^\s*thickness\s*=\s*([0-9.eE+-]+)", f.read())
-    return float(m.group(1)) if m else 0.762
-
-
-# ---------------------------------------------------------------------------
-# The blocks.  Each generator returns a function raw -> text: raw=False is
-# the text of the document, raw=True the same with every number in full.
-# ---------------------------------------------------------------------------
-
 def gen_readme_example(ctx):
     """README.md: the first example, fig5a, a few lines of its summary.txt."""
     s = run_many(ctx.program, [("fig5a", "input/fig5a_beadA_steel.nml")], ctx.tmp, 1)["fig5a"]
@@ -200,36 +176,6 @@ def gen_paper_table(ctx):
     return lambda raw: markdown_table(header, align, rows, raw)
 
 
-def gen_step_study(ctx):
-    """docs/validation.md: the same mesh, the largest increment halved twice."""
-    factors = [1.0, 0.5, 0.25]
-    jobs = []
-    for d in STEP_DECKS:
-        path = f"input/{d}.nml"
-        h = thickness_of(path)
-        for f in factors:
-            jobs.append((f"{d}_{f}", with_loading(path, f"max_increment = {0.1 * h * f:.6g}")))
-    res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
-    keys = [("lock_force_over_Eh", ".4e"), ("peak_force_over_Eh", ".4e"),
-            ("steady_force_over_Eh", ".4e"), ("delta_cr_over_h", ".3f")]
-    rows = []
-    for d in STEP_DECKS:
-        base = res[f"{d}_1.0"]
-        for f in factors:
-            s = res[f"{d}_{f}"]
-            row = [d if f == 1.0 else "", f"{0.1 * f:g}h", s["increments"]]
-            row += [Num(real(s, k), fmt) for k, fmt in keys]
-            for k, _ in keys[:3]:
-                a, b = real(base, k), real(s, k)
-                row.append(Num(None if f == 1.0 or a is None or b is None
-                               else 100.0 * (b - a) / a, "+.2f"))
-            rows.append(row)
-    header = ["deck", "max_increment", "increments", "F/(E h) at lock", "peak N/(E h)",
-              "steady N/(E h)", "Δcr/h", "F change %", "peak N change %", "steady N change %"]
-    align = ["---", "---:"] + ["---:"] * 8
-    return lambda raw: markdown_table(header, align, rows, raw)
-
-
 def script_output(ctx, args):
     """The stdout of one of the study scripts, run from the repository."""
     env = dict(os.environ)
@@ -239,20 +185,31 @@ def script_output(ctx, args):
     return proc.stdout.rstrip("\n")
 
 
+def gen_step_study(ctx):
+    """docs/validation.md: scripts/convergence.sh -s (every increment control
+    halved) on every paper deck and contact-section deck, verbatim."""
+    decks = sorted(f"input/{f}" for f in os.listdir(os.path.join(ROOT, "input"))
+                   if f.endswith(".nml") and (f.startswith("fig") or f.startswith("cc_")))
+    out = script_output(ctx, ["scripts/convergence.sh", "-s", "-o", os.path.join(ctx.tmp, "step")]
+                        + decks)
+    text = "```\n$ scripts/convergence.sh -s input/fig*.nml input/cc_*.nml\n" + out + "\n```"
+    return lambda raw: text
+
+
 def gen_convergence(ctx):
     """docs/validation.md: scripts/convergence.sh on fig5a and fig9c, verbatim."""
-    out = script_output(ctx, ["scripts/convergence.sh", "-o", os.path.join(ctx.tmp, "conv"),
+    out = script_output(ctx, ["scripts/convergence.sh", "-m", "-o", os.path.join(ctx.tmp, "conv"),
                               "input/fig5a_beadA_steel.nml", "input/fig9c_beadA_steel_free.nml"])
-    text = "```\n$ scripts/convergence.sh input/fig5a_beadA_steel.nml " \
+    text = "```\n$ scripts/convergence.sh -m input/fig5a_beadA_steel.nml " \
            "input/fig9c_beadA_steel_free.nml\n" + out + "\n```"
     return lambda raw: text
 
 
 def gen_convergence_shipped(ctx):
     """docs/validation.md: the free-edge bead A mesh as shipped (96), doubled twice."""
-    out = script_output(ctx, ["scripts/convergence.sh", "-o", os.path.join(ctx.tmp, "conv96"),
+    out = script_output(ctx, ["scripts/convergence.sh", "-m", "-o", os.path.join(ctx.tmp, "conv96"),
                               "-n", "96 192 384", "input/fig9c_beadA_steel_free.nml"])
-    text = '```\n$ scripts/convergence.sh -n "96 192 384" ' \
+    text = '```\n$ scripts/convergence.sh -m -n "96 192 384" ' \
            "input/fig9c_beadA_steel_free.nml\n" + out + "\n```"
     return lambda raw: text
 
@@ -267,10 +224,11 @@ def gen_bench(ctx):
 GENERATORS = {
     "readme_example": ("README.md", gen_readme_example, "bin/drawbead on input/fig5a_beadA_steel.nml"),
     "paper_table": ("docs/validation.md", gen_paper_table, "every input/fig*.nml and strip_tension.nml"),
-    "step_study": ("docs/validation.md", gen_step_study, "six paper decks at max_increment 0.1h, 0.05h, 0.025h"),
-    "convergence": ("docs/validation.md", gen_convergence, "scripts/convergence.sh on fig5a, fig9c"),
+    "step_study": ("docs/validation.md", gen_step_study,
+                   "scripts/convergence.sh -s on every input/fig*.nml and input/cc_*.nml"),
+    "convergence": ("docs/validation.md", gen_convergence, "scripts/convergence.sh -m on fig5a, fig9c"),
     "convergence_shipped": ("docs/validation.md", gen_convergence_shipped,
-                            "scripts/convergence.sh -n \"96 192 384\" on fig9c"),
+                            "scripts/convergence.sh -m -n \"96 192 384\" on fig9c"),
     "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5: 1 and 2 threads, scaling (not checkable)"),
 }
 UNCHECKABLE = {"bench"}

@@ -5,15 +5,28 @@
 # program on the same deck (input/<case>.nml) with the paper's section
 # (normal_stress = 'none') and with the contact section ('contact').
 #
-# Usage: scripts/validation_table.sh [--keep DIR]
-#   --keep DIR   keep the program's runs under DIR (default: a temporary
-#                directory, removed at the end)
+# Usage: scripts/validation_table.sh [--keep DIR] [--figures DIR]
+#   --keep DIR     keep the program's runs under DIR (default: a temporary
+#                  directory, removed at the end)
+#   --figures DIR  also draw, per case, the continuum and the program with
+#                  both sections together: DIR/continuum_<case>_lock.png
+#                  (punch force), _pull.png (restraining force) and
+#                  _strain.png (mid-surface strain after locking and after
+#                  pulling); needs gnuplot
 # Prints a markdown table: the continuum's value and the program's two, each
-# with its ratio to the continuum's.
+# with its ratio to the continuum's.  The decks run two at a time, one
+# thread each.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 keep=""
-if [[ ${1:-} == --keep ]]; then keep=$2; fi
+figures=""
+while (($# > 0)); do
+    case $1 in
+        --keep) keep=${2:?--keep needs a folder}; shift 2 ;;
+        --figures) figures=${2:?--figures needs a folder}; shift 2 ;;
+        *) echo "validation_table.sh: unknown argument '$1' (usage: [--keep DIR] [--figures DIR])" >&2; exit 2 ;;
+    esac
+done
 work=${keep:-$(mktemp -d)}
 [[ -n $keep ]] || trap 'rm -rf "$work"' EXIT
 mkdir -p "$work"
@@ -27,12 +40,41 @@ for cdir in docs/validation/continuum/cc_*/; do
         out=$work/${case}_$v
         mkdir -p "$out"
         sed "s/^&sheet/\&sheet\n   normal_stress = '$v'/" "$deck" >"$out/deck.nml"
-        bin/drawbead "$out/deck.nml" -o "$out/run" >"$out/log" 2>&1 || true
-        python3 scripts/continuum_model.py "$out/log" "$out/model" >/dev/null
-        python3 scripts/continuum_results.py metrics "$out/run" "$out/model/continuum_model.json" \
-            >"$out/metrics.txt"
+        (
+            OMP_NUM_THREADS=1 bin/drawbead "$out/deck.nml" -o "$out/run" >"$out/log" 2>&1 || true
+            python3 scripts/continuum_model.py "$out/log" "$out/model" >/dev/null
+            python3 scripts/continuum_results.py metrics "$out/run" "$out/model/continuum_model.json" \
+                >"$out/metrics.txt"
+        ) &
     done
+    wait
 done
+if [[ -n $figures ]]; then
+    mkdir -p "$figures"
+    for cdir in docs/validation/continuum/cc_*/; do
+        case=$(basename "$cdir")
+        none=$work/${case}_none/run
+        contact=$work/${case}_contact/run
+        gnuplot -c scripts/plot_lock.gp --title="$case: punch force" \
+            "${cdir}lock.dat::continuum::lw 2 dt 2 lc rgb '#D55E00'" \
+            "$none/lock.dat::paper section::lw 2 lc rgb '#999999'" \
+            "$contact/lock.dat::contact section::lw 2 lc rgb '#0072B2'" \
+            "$figures/continuum_${case}_lock.png" >/dev/null
+        gnuplot -c scripts/plot_pull.gp --title="$case: restraining force" --key='bottom right' \
+            "${cdir}pull.dat::continuum::lw 2 dt 2 lc rgb '#D55E00'" \
+            "$none/pull.dat::paper section::lw 2 lc rgb '#999999'" \
+            "$contact/pull.dat::contact section::lw 2 lc rgb '#0072B2'" \
+            "$figures/continuum_${case}_pull.png" >/dev/null
+        plots=()
+        for phase in lock pull; do
+            plots+=("set title 'after ${phase}ing'; plot '${cdir}strain_$phase.dat' using 1:4 with lines lw 2 dt 2 lc rgb '#D55E00' title 'continuum', '$none/strain_$phase.dat' using 1:4 with lines lw 2 lc rgb '#999999' title 'paper section', '$contact/strain_$phase.dat' using 1:4 with lines lw 2 lc rgb '#0072B2' title 'contact section'")
+        done
+        gnuplot -e "set terminal pngcairo size 900,800 noenhanced; set output '$figures/continuum_${case}_strain.png';
+            set multiplot layout 2,1 title '$case: mid-surface strain lambda - 1';
+            set xlabel 's/h'; set ylabel 'lambda - 1'; set key top left; set grid;
+            ${plots[0]}; ${plots[1]}; unset multiplot"
+    done
+fi
 python3 - "$work" <<'PY'
 import glob, os, sys
 work = sys.argv[1]

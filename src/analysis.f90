@@ -19,7 +19,8 @@ module analysis
    use record, only: run_record, record_pull, run_no_convergence, run_interrupted, run_write_failed
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular, newton_solve_failed
-   use step_control, only: judge_force_change, next_increment, cutback_factor
+   use step_control, only: judge_force_change, next_increment, cutback_factor, extrapolation_error, &
+                           judge_error
    use tearing, only: check_localization, check_fold, strain_limit_indicator, check_load_maximum, &
                       tear_at_snap_back
    use energy, only: energy_totals, add_increment_work
@@ -108,9 +109,9 @@ contains
       type(newton_result) :: nr
       real(dp) :: p, dt, dt_prev, h, eh
       real(dp) :: reaction, punch, lift, pen, min_ind, force, force_change, target, tool_work
-      real(dp) :: next_snapshot, ell
+      real(dp) :: next_snapshot, ell, prev_conjugate, err, dt_err
       integer :: pulled
-      logical :: have_prev, redo, paper_met, snapped
+      logical :: have_prev, have_force_prev, redo, paper_met, snapped
       character(len=16) :: tag
       character(len=200) :: msg
       h = m%thickness
@@ -132,6 +133,9 @@ contains
       end if
       dt_prev = dt
       have_prev = .false.
+      ! the force two converged states back, for the error estimate
+      prev_conjugate = 0.0_dp
+      have_force_prev = .false.
       next_snapshot = p0 + ctl%snapshot_every_over_h*h
       do while (p < p1 - 1.0e-12_dp*h)
          dt = min(dt, p1 - p)
@@ -198,6 +202,20 @@ contains
             s%u1 = s%u
             cycle
          end if
+         ! the local error of the force path (docs/theory.md §8.3): an
+         ! increment where the path turns too fast is redone shorter
+         err = -1.0_dp
+         if (have_force_prev) err = extrapolation_error(force, rec%last_conjugate, prev_conjugate, &
+                                                        dt, dt_prev, eh)
+         call judge_error(ctl, err, dt, redo, dt_err)
+         if (redo) then
+            rec%cutbacks = rec%cutbacks + 1
+            write (output_unit, '(a5,1x,a,es10.3,a,es9.2)') phase, 'cutback  d/h=', dt/h, &
+               '  error', err
+            dt = dt_err
+            s%u1 = s%u
+            cycle
+         end if
          ind_old = s%indicator
          u_prev = s%u
          dt_prev = dt
@@ -229,6 +247,8 @@ contains
          tool_work = 0.0_dp
          if (phase == 'lock') tool_work = 0.5_dp*dt*(rec%last_conjugate + punch)
          call add_increment_work(ld, r, s%u - u_prev, tool_work, rec)
+         prev_conjugate = rec%last_conjugate
+         have_force_prev = .true.
          rec%last_conjugate = force
          if (phase == 'lock') then
             rec%lock_force = punch
@@ -289,7 +309,11 @@ contains
                return
             end if
          end if
-         dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations)
+         if (err >= 0.0_dp) then
+            dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations, dt_err)
+         else
+            dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations)
+         end if
          have_prev = .true.
       end do
    end subroutine run_phase

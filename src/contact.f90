@@ -28,16 +28,17 @@ module contact
    use friction, only: friction_law
    implicit none
    private
-   public :: contact_station, contact_commit, penalty_energy
+   public :: contact_station, penalty_energy
    public :: n_chist, ich_active, ich_slip, ich_slip_max, ich_sense, ich_position, &
              ich_dissipation, ich_penetration, ich_traction, ich_hint
 
    !> Layout of a station's contact history column ch(n_chist):
-   !> 1 when the station was in contact at the last converged state, else 0
+   !> 1 when the station is in contact (trial) or was (converged), else 0
    integer, parameter :: ich_active = 1
    !> u_T, the distance slid along the sense of first sliding, mm
    integer, parameter :: ich_slip = 2
-   !> u_T^m, the largest committed u_T (the reversal point of (2.21)), mm
+   !> u_T^m, the largest u_T of the station's history (the reversal point
+   !> of (2.21)), mm
    integer, parameter :: ich_slip_max = 3
    !> sense of first sliding along the tool's tangent: +1, -1, 0 unknown
    integer, parameter :: ich_sense = 4
@@ -77,7 +78,7 @@ contains
       real(dp), intent(in) :: shift, k, delta, mu, eps_f, p(2), chn(:)
       real(dp), intent(out) :: ch1(:), f(2), kf(2, 2), fn, dfn(2)
       real(dp) :: prel(2), d, n(2), t(2), curv, ds, sense, ut, fr, dfr, dslip(2), tt, pn, dpn
-      real(dp) :: dut(2)
+      real(dp) :: dut(2), dold, a, utm, trac_old
       integer :: seg
       prel = [p(1), p(2) - shift]
       call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg, hint=nint(chn(ich_hint)))
@@ -104,44 +105,50 @@ contains
       kf = -dpn*outer(n, n) + pn*curv*outer(t, t)
       fn = pn
       dfn = -dpn*n
-      ! friction acts once the station's contact history has started, i.e.
-      ! it was in contact at the last converged state (docs/theory.md §6)
-      if (mu <= 0.0_dp .or. chn(ich_active) < 0.5_dp) return
-      ! friction: slip since the last converged state, measured along t;
-      ! d(ds)/dp = t (1 - curv n.(p - p_old)) because t turns on an arc
+      if (mu <= 0.0_dp) return
+      ! friction, integrated from the last converged state to the trial one
+      ! like a return mapping (docs/theory.md §6): the slip of the increment
+      ! is measured along t from the converged position; d(ds)/dp =
+      ! t (1 - curv n.(p - p_old)) because t turns on an arc
       ds = dot_product(t, prel - chn(ich_position:ich_position + 1))
       dslip = t*(1.0_dp - curv*dot_product(n, prel - chn(ich_position:ich_position + 1)))
-      if (abs(chn(ich_sense)) < 0.5_dp) then
-         ! in contact, not slid yet: the first non-zero slip sets the sense
+      if (chn(ich_active) < 0.5_dp) then
+         ! the station entered contact within the increment: its history
+         ! starts there, at the fraction a = d/(d - d_old) of the motion
+         ! (d linear along the increment), so that only the slip in contact
+         ! counts; da/dp = d_old/(d - d_old)^2 n
+         dold = min(chn(ich_penetration), 0.0_dp)
+         a = d/(d - dold)
+         dslip = a*dslip + ds*((dold/(d - dold))/(d - dold))*n
+         ds = a*ds
+      end if
+      if (chn(ich_active) < 0.5_dp .or. abs(chn(ich_sense)) < 0.5_dp) then
+         ! no slip yet: the first slip sets the sense
          sense = merge(1.0_dp, -1.0_dp, ds >= 0.0_dp)
          ut = abs(ds)
-         dut = sense*dslip
+         utm = 0.0_dp
+         trac_old = 0.0_dp
       else
          sense = chn(ich_sense)
          ut = chn(ich_slip) + sense*ds
-         dut = sense*dslip
+         utm = chn(ich_slip_max)
+         trac_old = chn(ich_traction)
       end if
+      dut = sense*dslip
       ch1(ich_slip) = ut
-      ch1(ich_slip_max) = chn(ich_slip_max)
+      ! the reversal point of the trial path: the converged one already holds
+      ! the largest converged u_T, and u_T is linear along the increment
+      ch1(ich_slip_max) = max(utm, ut)
       ch1(ich_sense) = sense
-      call friction_law(ut, chn(ich_slip_max), eps_f, fr, dfr)
+      call friction_law(ut, utm, eps_f, fr, dfr)
       tt = mu*pn*fr*sense
       ch1(ich_traction) = tt
-      ch1(ich_dissipation) = chn(ich_dissipation) + 0.5_dp*(chn(ich_traction) + tt)*ds
+      ch1(ich_dissipation) = chn(ich_dissipation) + 0.5_dp*(trac_old + tt)*ds
       f = f - tt*t
       ! d(tt t)/dp = t (mu sense)(fr dpn dd/dp + pn dfr dut) + tt dt/dp,
       ! dd/dp = -n, dt/dp = -curv n t^T
       kf = kf - mu*sense*outer(t, -fr*dpn*n + pn*dfr*dut) + tt*curv*outer(n, t)
    end subroutine contact_station
-
-   !> CONTACT_COMMIT: at convergence, start or continue a station's history.
-   !> A station entering contact starts with u_T = 0 and an unknown sense;
-   !> u_T^m keeps the largest committed u_T (the reversal point of (2.21)).
-   !>  ch [in,out] a station's history column: the trial state being committed
-   pure subroutine contact_commit(ch)
-      real(dp), intent(inout) :: ch(:)
-      if (ch(ich_active) > 0.5_dp) ch(ich_slip_max) = max(ch(ich_slip_max), ch(ich_slip))
-   end subroutine contact_commit
 
    !> PENALTY_ENERGY: stored energy k G(d) of a station penetrating by d
    !> (G' = g of the smoothed onset; G = d^2/2 for delta = 0).

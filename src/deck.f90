@@ -18,7 +18,7 @@
 !>              penalty, friction, friction_eps, contact_smoothing
 !>   &loading   lock_depth, pull_distance, initial_increment,
 !>              min_increment, max_increment, max_iterations, tolerance,
-!>              max_force_change, squeeze_force_change
+!>              max_force_change, squeeze_force_change, step_tolerance
 !>
 !> Units: lengths mm, stresses MPa, forces per unit width N/mm; penalty is
 !> k h / E, friction_eps is in units of h. Text values must be quoted.
@@ -85,6 +85,7 @@ module deck
       character(len=16) :: left_edge = 'clamped'      ! 'clamped' | 'free'
       real(dp) :: back_tension = 0.0_dp               ! N/mm, with 'free' only
       character(len=16) :: normal_stress = 'contact'  ! 'contact' | 'none' (the paper's plane-stress section)
+      real(dp) :: strain_gradient = unset             ! the necking length term; default 1 with 'contact', 0 with 'none'
       ! &material
       real(dp) :: youngs_modulus = 207000.0_dp        ! MPa
       real(dp) :: poissons_ratio = 0.3_dp
@@ -124,6 +125,7 @@ module deck
       real(dp) :: tolerance = 1.0e-8_dp               ! relative residual and correction
       real(dp) :: max_force_change = 0.1_dp           ! target relative change of F (lock) or N (pull) per increment
       real(dp) :: squeeze_force_change = 0.02_dp      ! the same where F rises faster than H^5 while locking
+      real(dp) :: step_tolerance = 5.0e-3_dp          ! local error of the force path per increment (0: off)
    end type deck_type
 
 contains
@@ -152,6 +154,7 @@ contains
       if (is_positive(d%thickness)) h = d%thickness
 
       if (is_unset(d%length)) d%length = 50.0_dp*h
+      if (is_unset(d%strain_gradient)) d%strain_gradient = merge(1.0_dp, 0.0_dp, d%normal_stress == 'contact')
       if (is_unset(d%r1)) d%r1 = bead_a_over_h(1)*h
       if (is_unset(d%r2)) d%r2 = bead_a_over_h(2)*h
       if (is_unset(d%b1)) d%b1 = bead_a_over_h(3)*h
@@ -160,8 +163,8 @@ contains
       if (is_unset(d%h2)) d%h2 = bead_a_over_h(6)*h
       if (is_unset(d%pull_distance)) d%pull_distance = 10.0_dp*h
       if (is_unset(d%min_increment)) d%min_increment = 1.0e-6_dp*h
-      ! 0.1h resolves the friction history (which starts at the first
-      ! converged state in contact) and the force curves
+      ! 0.1h resolves the force curves; where the path turns, the error
+      ! estimate of the step control (step_tolerance) shortens it
       if (is_unset(d%max_increment)) d%max_increment = 0.1_dp*h
       if (is_unset(d%initial_increment)) then
          d%initial_increment = 0.05_dp*h
@@ -244,6 +247,7 @@ contains
       call check_real(errs, at(p, 'sheet', 'back_tension'), d%back_tension, lo=0.0_dp)
       call check_choice(errs, at(p, 'sheet', 'normal_stress'), d%normal_stress, &
                         [character(len=16) :: 'contact', 'none'])
+      call check_real(errs, at(p, 'sheet', 'strain_gradient'), d%strain_gradient, lo=0.0_dp, hi=100.0_dp)
       ! the contact section prescribes tau22 through the built-in law's
       ! reduction to plane stress (docs/theory.md §12), which a user's UMAT
       ! does not offer
@@ -406,6 +410,8 @@ contains
                       lo=1.0e-3_dp, hi=0.5_dp, hi_open=.true.)
       call check_real(errs, at(p, 'loading', 'max_force_change'), d%max_force_change, &
                       lo=1.0e-3_dp, hi=0.5_dp, hi_open=.true.)
+      call check_real(errs, at(p, 'loading', 'step_tolerance'), d%step_tolerance, &
+                      lo=0.0_dp, hi=0.5_dp, hi_open=.true.)
    end subroutine validate_deck
 
    !> check_real -- require a finite real within optional bounds.

@@ -266,11 +266,11 @@ contains
       character(len=*), intent(inout) :: msg
       character(len=echo_len), intent(out) :: lines(echo_rows)
 
-      real(dp) :: thickness, length, mesh_beta, back_tension
+      real(dp) :: thickness, length, mesh_beta, back_tension, strain_gradient
       integer :: n_elements
       character(len=16) :: left_edge, normal_stress
       namelist /sheet/ thickness, length, n_elements, mesh_beta, left_edge, back_tension, &
-         normal_stress
+         normal_stress, strain_gradient
 
       thickness = d%thickness
       length = d%length
@@ -279,6 +279,7 @@ contains
       left_edge = d%left_edge
       back_tension = d%back_tension
       normal_stress = d%normal_stress
+      strain_gradient = d%strain_gradient
       select case (action)
       case (act_read_unit)
          read (unit, nml=sheet, iostat=ios, iomsg=msg)
@@ -296,6 +297,7 @@ contains
       d%left_edge = left_edge
       d%back_tension = back_tension
       d%normal_stress = normal_stress
+      d%strain_gradient = strain_gradient
    end subroutine nml_sheet
 
    !> nml_material -- namelist &material (arguments as group_io).
@@ -421,10 +423,11 @@ contains
       character(len=echo_len), intent(out) :: lines(echo_rows)
 
       real(dp) :: lock_depth, pull_distance, initial_increment, min_increment, &
-                  max_increment, tolerance, squeeze_force_change, max_force_change
+                  max_increment, tolerance, squeeze_force_change, max_force_change, step_tolerance
       integer :: max_iterations
       namelist /loading/ lock_depth, pull_distance, initial_increment, min_increment, &
-         max_increment, max_iterations, tolerance, squeeze_force_change, max_force_change
+         max_increment, max_iterations, tolerance, squeeze_force_change, max_force_change, &
+         step_tolerance
 
       lock_depth = d%lock_depth
       pull_distance = d%pull_distance
@@ -435,6 +438,7 @@ contains
       tolerance = d%tolerance
       squeeze_force_change = d%squeeze_force_change
       max_force_change = d%max_force_change
+      step_tolerance = d%step_tolerance
       select case (action)
       case (act_read_unit)
          read (unit, nml=loading, iostat=ios, iomsg=msg)
@@ -454,6 +458,7 @@ contains
       d%tolerance = tolerance
       d%squeeze_force_change = squeeze_force_change
       d%max_force_change = max_force_change
+      d%step_tolerance = step_tolerance
    end subroutine nml_loading
 
    !> put_lines -- write namelist output lines, dropping the blank padding

@@ -22,12 +22,14 @@ module element
    implicit none
    private
    public :: element_internal, element_gradients, v_dofs, w_dofs
-   public :: n_gp, igp_strain, igp_curvature, igp_force, igp_moment
+   public :: n_gp, igp_strain, igp_curvature, igp_force, igp_moment, igp_gradient_energy
 
    integer, parameter :: v_dofs(4) = [1, 2, 5, 6], w_dofs(4) = [3, 4, 7, 8]
    !> what element_internal reports per Gauss point, gp(n_gp, n_gauss): the
-   !> axial strain eps, the bending strain rho, and the section forces N, M
-   integer, parameter :: igp_strain = 1, igp_curvature = 2, igp_force = 3, igp_moment = 4, n_gp = 4
+   !> axial strain eps, the bending strain rho, the section forces N, M, and
+   !> the energy of the strain-gradient term per unit reference length
+   integer, parameter :: igp_strain = 1, igp_curvature = 2, igp_force = 3, igp_moment = 4, &
+                         igp_gradient_energy = 5, n_gp = 5
 
 contains
 
@@ -61,14 +63,17 @@ contains
    !>  h1     [out] trial history
    !>  re     [out] internal force vector (8)
    !>  ke     [out] tangent (8, 8)
-   !>  gp     [out] per Gauss point: eps, rho, N, M (igp_strain ... igp_moment)
+   !>  gp     [out] per Gauss point: eps, rho, N, M, gradient energy (igp_*)
    !>  pnewdt [in,out] < 1 on return if the increment must be cut
    !>  face_force  [in] (2, n_gauss) normal contact force per unit reference
    !>                   length on the (bottom, top) face of each Gauss
    !>                   station, >= 0; all 0: the paper's section
    !>  dface_force [in] (8, 2, n_gauss) its derivative with respect to ul
+   !>  gradient    [in] optional: c of the strain-gradient term
+   !>                   (1/2) c (d lambda/ds)^2 per unit reference length,
+   !>                   N mm (docs/theory.md §12.7); absent or 0: none
    subroutine element_internal(le, ul, wz, mat, hn, h1, re, ke, gp, pnewdt, face_force, &
-                               dface_force)
+                               dface_force, gradient)
       real(dp), intent(in) :: le, ul(8), wz(:)
       type(material_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :, :)
@@ -76,6 +81,7 @@ contains
       real(dp), intent(out) :: re(8), ke(8, 8), gp(n_gp, n_gauss)
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in) :: face_force(2, n_gauss), dface_force(8, 2, n_gauss)
+      real(dp), intent(in), optional :: gradient
       ! G = dg/dq has two entries per column: column k holds s1(k) in row
       ! row_1(k) (v' or w') and s2(k) in row row_2(k) (v'' or w''), so
       ! B = d(eps, rho)/dq and G^T H G are formed from those entries alone
@@ -84,7 +90,10 @@ contains
       real(dp) :: force, moment, c(2, 2), beps(8), brho(8), hg(4, 4), dv, s1(8), s2(8)
       real(dp) :: ca(8), cb(8), hs(4, 8)
       real(dp) :: face_stress(2), cs(2, 2), lam_f(2), zb_f(2), gs(8, 2)
+      real(dp) :: gc, gam, dgam(4), d2gam(4, 4), bgam(8)
       integer :: ig, i, j, f, npt
+      gc = 0.0_dp
+      if (present(gradient)) gc = gradient
       re = 0.0_dp
       ke = 0.0_dp
       gp = 0.0_dp
@@ -134,6 +143,57 @@ contains
                           + s1(i)*hs(row_1(i), j) + s2(i)*hs(row_2(i), j)
             end do
          end do
+         if (gc > 0.0_dp) then
+            ! the strain-gradient term (1/2) gc (d lambda/ds)^2 (docs/theory.md §12.7)
+            call stretch_gradient(g, gam, dgam, d2gam)
+            bgam = matmul(dgam, gm)
+            gp(igp_gradient_energy, ig) = 0.5_dp*gc*gam*gam
+            re = re + dv*gc*gam*bgam
+            ke = ke + dv*gc*(outer8(bgam, bgam) + gam*matmul(transpose(gm), matmul(d2gam, gm)))
+         end if
       end do
    end subroutine element_internal
+
+   !> STRETCH_GRADIENT: gamma = d lambda/ds = (a c + b d)/lambda along the
+   !> reference centreline and its first and second derivatives with respect
+   !> to g = (a, b, c, d) = (1 + v', w', v'', w'').
+   !>  g      [in]  (a, b, c, d)
+   !>  gam    [out] gamma
+   !>  dgam   [out] d gamma/d g
+   !>  d2gam  [out] d2 gamma/d g2
+   pure subroutine stretch_gradient(g, gam, dgam, d2gam)
+      real(dp), intent(in) :: g(4)
+      real(dp), intent(out) :: gam, dgam(4), d2gam(4, 4)
+      real(dp) :: a, b, c, d, lam, u, l3, l5
+      a = g(1); b = g(2); c = g(3); d = g(4)
+      lam = sqrt(a*a + b*b)
+      u = a*c + b*d
+      l3 = 1.0_dp/lam**3
+      l5 = l3/(lam*lam)
+      gam = u/lam
+      dgam = [c/lam - u*a*l3, d/lam - u*b*l3, a/lam, b/lam]
+      d2gam = 0.0_dp
+      d2gam(1, 1) = -2.0_dp*c*a*l3 - u*l3 + 3.0_dp*u*a*a*l5
+      d2gam(2, 2) = -2.0_dp*d*b*l3 - u*l3 + 3.0_dp*u*b*b*l5
+      d2gam(1, 2) = -(c*b + d*a)*l3 + 3.0_dp*u*a*b*l5
+      d2gam(2, 1) = d2gam(1, 2)
+      d2gam(1, 3) = b*b*l3
+      d2gam(3, 1) = d2gam(1, 3)
+      d2gam(1, 4) = -a*b*l3
+      d2gam(4, 1) = d2gam(1, 4)
+      d2gam(2, 3) = -a*b*l3
+      d2gam(3, 2) = d2gam(2, 3)
+      d2gam(2, 4) = a*a*l3
+      d2gam(4, 2) = d2gam(2, 4)
+   end subroutine stretch_gradient
+
+   !> OUTER8: the outer product a b^T of two 8-vectors.
+   pure function outer8(a, b) result(c)
+      real(dp), intent(in) :: a(8), b(8)
+      real(dp) :: c(8, 8)
+      integer :: j
+      do j = 1, 8
+         c(:, j) = a*b(j)
+      end do
+   end function outer8
 end module element

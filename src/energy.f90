@@ -8,6 +8,7 @@ module energy
    use section, only: ih_sse, ih_spd, ih_work22
    use contact, only: penalty_energy, ich_penetration, ich_dissipation
    use model, only: model_type, state_type, load_type
+   use element, only: igp_gradient_energy
    use record, only: run_record
    implicit none
    private
@@ -59,7 +60,9 @@ contains
       do e = 1, m%n_el
          do ig = 1, n_gauss
             dv = gauss_wt(ig)*(m%x(e + 1) - m%x(e))
-            energy(1) = energy(1) + dv*dot_product(m%wz, s%hn(:, ih_sse, ig, e))
+            ! elastic: the material's and the strain-gradient term's
+            energy(1) = energy(1) + dv*(dot_product(m%wz, s%hn(:, ih_sse, ig, e)) &
+                                        + s%gpn(igp_gradient_energy, ig, e))
             energy(2) = energy(2) + dv*dot_product(m%wz, s%hn(:, ih_spd, ig, e))
             energy(5) = energy(5) + dv*dot_product(m%wz, s%hn(:, ih_work22, ig, e))
             if (m%has_tools) then

@@ -272,10 +272,13 @@ contains
    !> by driving the material (built-in or user) along the path in
    !> increments of 1e-4 and interpolating the crossing.
    !>  mat     [in]  the material
+   !>  tau_max [out] optional: the axial Kirchhoff stress at that strain (at
+   !>                the last strain driven when the maximum is not reached)
    !>  eps_max (result) the strain; huge() if not reached by a log strain
    !>                of 3 or if the material asks for a smaller increment
-   function max_load_strain(mat) result(eps_max)
+   function max_load_strain(mat, tau_max) result(eps_max)
       type(material_type), intent(in) :: mat
+      real(dp), intent(out), optional :: tau_max
       real(dp) :: eps_max
       real(dp), parameter :: step = 1.0e-4_dp
       real(dp) :: stress(1, 2), statev(1, n_statev), ddsdde(1, 2, 2), sse(1), spd(1), pnewdt
@@ -288,6 +291,7 @@ contains
       eps = 0.0_dp
       g_old = 1.0_dp
       eps_max = huge(1.0_dp)
+      if (present(tau_max)) tau_max = 0.0_dp
       do i = 1, 30000
          pnewdt = 1.0_dp
          call material_update(mat, 1, stress, statev, ddsdde, sse, spd, &
@@ -295,6 +299,7 @@ contains
                               [0.0_dp], pnewdt)
          if (pnewdt < 1.0_dp) return
          eps = eps + step
+         if (present(tau_max)) tau_max = stress(1, 1)
          g = statev(1, isv_tangent) - stress(1, 1)
          if (g <= 0.0_dp) then
             eps_max = eps - step*g/(g - g_old)

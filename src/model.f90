@@ -21,6 +21,7 @@ module model
       real(dp), allocatable :: z(:), wz(:)   ! Simpson stations and weights
       type(material_type) :: material        ! the material (built-in law or a user's UMAT)
       real(dp) :: max_load_strain = 0.0_dp   ! plane-strain maximum-load log strain of the material
+      real(dp) :: max_load_stress = 0.0_dp   ! the axial Kirchhoff stress there, MPa
       ! tools and contact (bead /= 'none')
       logical :: has_tools = .false.
       type(tool_type) :: tool(2)             ! 1 upper (fixed), 2 lower (moves by H)
@@ -29,6 +30,7 @@ module model
       real(dp) :: friction = 0.0_dp          ! mu
       real(dp) :: friction_eps = 1.0_dp      ! eps of (4.3), mm
       logical :: contact_section = .false.   ! the tools' normal forces load the section (docs/theory.md §12)
+      real(dp) :: gradient = 0.0_dp          ! c of the strain-gradient term (1/2) c (d lambda/ds)^2, N mm (0: none)
       ! load schedule: locking to lock_depth, then pulling by pull_distance
       logical :: left_edge_free = .false.    ! v free under the back tension; else clamped
       real(dp) :: back_tension = 0.0_dp      ! N/mm, on a free left edge
@@ -85,7 +87,7 @@ contains
       call graded_nodes(n_el, 0.5_dp*length, beta, m%x)
       call simpson_rule(npt, h, m%z, m%wz)
       m%material = mat
-      m%max_load_strain = max_load_strain(mat)
+      m%max_load_strain = max_load_strain(mat, m%max_load_stress)
    end subroutine model_init
 
    !> STATE_INIT: undeformed, stress-free state.

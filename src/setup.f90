@@ -70,6 +70,9 @@ contains
       m%friction_eps = d%friction_eps*h
       m%left_edge_free = d%left_edge == 'free'
       m%contact_section = d%normal_stress == 'contact'
+      ! the strain-gradient term (docs/theory.md §12.7): strain_gradient
+      ! times tau* h^3/12, tau* the plane-strain flow stress at the maximum load
+      m%gradient = d%strain_gradient*m%max_load_stress*h**3/12.0_dp
       m%back_tension = d%back_tension
       m%lock_depth = d%lock_depth
       m%pull_distance = d%pull_distance
@@ -284,6 +287,7 @@ contains
       ctl%tolerance = d%tolerance
       ctl%max_force_change = d%max_force_change
       ctl%squeeze_force_change = d%squeeze_force_change
+      ctl%step_tolerance = d%step_tolerance
       ctl%predictor = d%predictor
       ctl%stop_at_localization = d%stop_at_localization
       ctl%tearing_criterion = d%tearing_criterion

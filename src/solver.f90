@@ -13,7 +13,7 @@ module solver
    use element, only: element_internal, v_dofs, w_dofs
    use section, only: section_localization, section_update_zbar, ih_eqps
    use model, only: model_type, state_type, load_type
-   use contact, only: contact_station, contact_commit, ich_active
+   use contact, only: contact_station, ich_active
    use material, only: material_builtin
    implicit none
    private
@@ -207,7 +207,7 @@ contains
          end do
       end if
       call element_internal(le, ul, m%wz, m%material, hn, h1, re, ke, gp, pnewdt, &
-                            face_force, dface_force)
+                            face_force, dface_force, m%gradient)
       if (pnewdt < 1.0_dp) return
       ! moments (slope dofs) enter the force scale divided by the thickness
       fs(1) = sum(re(1:8:2)**2)
@@ -411,29 +411,24 @@ contains
    !> COMMIT_STATE: accept the trial state as converged; update the lagged
    !> station distances and the localization indicator of every Gauss station.
    !>  m  [in]  model
-   !>  s  [in,out] state: u <- u1, hn <- h1, cn <- c1 (committed friction
-   !>           history), gpn <- gp; h1, c1 and gp are exchanged with them,
-   !>           so they hold the previous converged state until the next
-   !>           assemble rewrites them
+   !>  s  [in,out] state: u <- u1, hn <- h1, cn <- c1 (the contact histories,
+   !>              integrated to the trial state by contact_station), gpn <- gp;
+   !>              h1, c1 and gp are exchanged with them, so they hold the
+   !>              previous converged state until the next assemble rewrites them
    !>  shift [in] the lower tool's rise at this state
    subroutine commit_state(m, s, shift)
       type(model_type), intent(in) :: m
       type(state_type), intent(inout) :: s
       real(dp), intent(in) :: shift
-      integer :: e, ig, it
+      integer :: e, ig
       real(dp), allocatable :: swap4(:, :, :, :), swap3(:, :, :)
       ! each element's stations are independent: in parallel, like assemble
-      !$omp parallel do default(none) schedule(static) private(ig, it) shared(m, s)
+      !$omp parallel do default(none) schedule(static) private(ig) shared(m, s)
       do e = 1, m%n_el
          do ig = 1, n_gauss
             s%indicator(ig, e) = section_localization(m%wz, s%h1(:, :, ig, e), &
                                                       m%thickness, m%youngs)
             call section_update_zbar(m%z, s%h1(:, :, ig, e))
-            if (m%has_tools) then
-               do it = 1, 2
-                  call contact_commit(s%c1(:, ig, e, it))
-               end do
-            end if
          end do
       end do
       !$omp end parallel do

@@ -1,18 +1,28 @@
 !> step_control -- the size of the next increment of the load parameter
 !> (H while locking, delta while pulling): cut back on a Newton failure, redo
 !> an increment whose force jumped, grow after easy convergence, shrink
-!> after a hard one, and resolve fast changes of the phase's force (the
+!> after a hard one, resolve fast changes of the phase's force (the
 !> closing binder's final squeeze, the first slip over a radius) at about a
-!> target relative change per increment (docs/theory.md §8.3).
+!> target relative change per increment, and hold the local error of the
+!> force path, estimated by the extrapolation of the last two converged
+!> states, to step_tolerance (docs/theory.md §8.3).
 module step_control
    use kinds, only: dp
    use controls, only: controls_type
    implicit none
    private
-   public :: judge_force_change, next_increment, cutback_factor
+   public :: judge_force_change, next_increment, cutback_factor, extrapolation_error, judge_error
 
    !> the increment is multiplied by this after a failed or redone increment
    real(dp), parameter :: cutback_factor = 0.25_dp
+   !> an increment whose error estimate exceeds this many times
+   !> step_tolerance is redone (its successor would be less than half as long)
+   real(dp), parameter :: error_redo_ratio = 4.0_dp
+   !> safety factor on the increment the error estimate allows (below it
+   !> the increment is shortened)
+   real(dp), parameter :: error_safety = 0.8_dp
+   !> the error estimate grows an increment by at most this factor
+   real(dp), parameter :: max_growth = 2.0_dp
 
 contains
 
@@ -53,14 +63,70 @@ contains
       redo = change > jump .and. abs(last_force) > 1.0e-4_dp*eh .and. dt > 4.0_dp*ctl%min_increment
    end subroutine judge_force_change
 
+   !> EXTRAPOLATION_ERROR: the local error estimate of a converged increment:
+   !> the distance of the phase's force from its linear extrapolation
+   !> through the last two converged states,
+   !>   err = |P - P_n - (dt/dt_prev)(P_n - P_(n-1))| / max(|P|, |P_n|, 1e-4 E h),
+   !> about (1/2) P'' dt (dt + dt_prev)/P: second order in the increment on
+   !> a smooth path, and large where the path turns (a tool face closing on
+   !> the sheet, the onset of sliding), which is where the integration of
+   !> the path-dependent histories needs short increments (docs/theory.md §8.3).
+   !>  force       [in] P at the end of the increment
+   !>  last_force  [in] P_n at its start (the last converged state)
+   !>  prev_force  [in] P_(n-1) at the converged state before
+   !>  dt, dt_prev [in] the increment and the one before (> 0)
+   !>  eh          [in] E h, the force scale
+   pure function extrapolation_error(force, last_force, prev_force, dt, dt_prev, eh) result(err)
+      real(dp), intent(in) :: force, last_force, prev_force, dt, dt_prev, eh
+      real(dp) :: err
+      err = abs(force - last_force - (dt/dt_prev)*(last_force - prev_force)) &
+            /max(abs(force), abs(last_force), 1.0e-4_dp*eh)
+   end function extrapolation_error
+
+   !> JUDGE_ERROR: whether an increment with the error estimate err must be
+   !> redone, and the increment that the estimate allows next.  The error
+   !> being second order, the increment that meets step_tolerance is
+   !> q dt with q = 0.8 sqrt(tol/err) (0.8 a safety factor), taken within
+   !> [cutback_factor, 2] and rounded down to a multiple of 1/32.  Rounded:
+   !> err is a difference of nearly equal forces, known to the Newton
+   !> tolerance; an increment sized continuously by it would follow that
+   !> noise, and so would the path of the increments and the results (two
+   !> builds of the program, whose round-off differs, then disagreed by
+   !> 1e-5 where tests/regression holds them to 1e-6).  On the lattice of
+   !> 1/32 the noise (about 1e-8 of q) changes the factor only when q lies
+   !> that close to a multiple of 1/32.  An estimate above 4 tol is redone
+   !> (unless the increment is already within 4 min_increment).  A negative
+   !> or zero err (no estimate: the first increment of a phase; a straight
+   !> path) or step_tolerance = 0 allows 2 dt.
+   !>  ctl     [in]  controls (step_tolerance, min_increment)
+   !>  err     [in]  the estimate (extrapolation_error), < 0: none
+   !>  dt      [in]  the increment just converged
+   !>  redo    [out] .true.: redo the increment with dt_err
+   !>  dt_err  [out] the increment the estimate allows
+   pure subroutine judge_error(ctl, err, dt, redo, dt_err)
+      type(controls_type), intent(in) :: ctl
+      real(dp), intent(in) :: err, dt
+      logical, intent(out) :: redo
+      real(dp), intent(out) :: dt_err
+      real(dp) :: q
+      redo = .false.
+      dt_err = max_growth*dt
+      if (err <= 0.0_dp .or. ctl%step_tolerance <= 0.0_dp) return
+      q = min(max_growth, max(cutback_factor, error_safety*sqrt(ctl%step_tolerance/err)))
+      dt_err = (aint(32.0_dp*q)/32.0_dp)*dt
+      redo = err > error_redo_ratio*ctl%step_tolerance .and. dt > 4.0_dp*ctl%min_increment
+   end subroutine judge_error
+
    !> NEXT_INCREMENT: the size of the increment after a converged one.
    !> A force that changed by more than its target scales the increment by
-   !> target/change (at least by cutback_factor); otherwise 3 Newton
-   !> iterations or fewer double it, 4-5 grow it by a quarter, 8 or more
-   !> shrink it to 0.6; always within [min_increment, max_increment].  On
-   !> the Fig. 9c deck the punch force at full lock is 2.4% below that of a
-   !> 0.5% target at 10% per increment in the squeeze, 0.2% at 3%, 0.07% at
-   !> 2% and 0.04% at 1% (1.4 times the locking increments of 2%), hence
+   !> target/change (at least by cutback_factor).  Otherwise, with an error
+   !> estimate (dt_err present), the increment it allows, shrunk to 0.6 dt
+   !> after 8 or more Newton iterations; without one, 3 Newton iterations or
+   !> fewer double it, 4-5 grow it by a quarter, 8 or more shrink it to 0.6.
+   !> Never above dt_err; always within [min_increment, max_increment].
+   !> On the Fig. 9c deck the punch force at full lock is 2.4% below that of
+   !> a 0.5% target at 10% per increment in the squeeze, 0.2% at 3%, 0.07%
+   !> at 2% and 0.04% at 1% (1.4 times the locking increments of 2%), hence
    !> the default squeeze_force_change of 2%.
    !>  ctl         [in]  controls
    !>  dt          [in]  the increment just converged
@@ -69,20 +135,28 @@ contains
    !>  force       [in]  the force at its end
    !>  eh          [in]  E h
    !>  iterations  [in]  Newton iterations it took
-   pure function next_increment(ctl, dt, change, target, force, eh, iterations) result(dt_next)
+   !>  dt_err      [in]  optional: the increment the error estimate allows
+   !>                    (judge_error)
+   pure function next_increment(ctl, dt, change, target, force, eh, iterations, dt_err) result(dt_next)
       type(controls_type), intent(in) :: ctl
       real(dp), intent(in) :: dt, change, target, force, eh
       integer, intent(in) :: iterations
+      real(dp), intent(in), optional :: dt_err
       real(dp) :: dt_next
       dt_next = dt
       if (change > target .and. abs(force) > 1.0e-4_dp*eh) then
-         dt_next = max(max(cutback_factor, target/change)*dt, ctl%min_increment)
+         dt_next = max(cutback_factor, target/change)*dt
+      else if (present(dt_err)) then
+         dt_next = dt_err
+         if (iterations >= 8) dt_next = min(dt_next, 0.6_dp*dt)
       else if (iterations <= 3) then
-         dt_next = min(2.0_dp*dt, ctl%max_increment)
+         dt_next = 2.0_dp*dt
       else if (iterations <= 5) then
-         dt_next = min(1.25_dp*dt, ctl%max_increment)
+         dt_next = 1.25_dp*dt
       else if (iterations >= 8) then
-         dt_next = max(0.6_dp*dt, ctl%min_increment)
+         dt_next = 0.6_dp*dt
       end if
+      if (present(dt_err)) dt_next = min(dt_next, dt_err)
+      dt_next = min(max(dt_next, ctl%min_increment), ctl%max_increment)
    end function next_increment
 end module step_control
