@@ -56,8 +56,9 @@
 #
 # The tables go to stdout, after lines starting with '#' (an HTML comment
 # with --markdown) that give the number of runs, the binary, the compiler
-# and flags, and the host with its load average (look at it: other work on
-# the machine slows the runs, two threads most). Build output, progress
+# and flags, and the host with its load average before and after the runs
+# (look at it: other work on the machine slows the runs, two threads
+# most; the load after includes the runs' own). Build output, progress
 # and the stderr of failed runs go to stderr.
 #
 # Exit status: 0 when every run exited 0; 1 when any run exited otherwise
@@ -337,6 +338,8 @@ points_per_assembly() {
 failures=0
 rows=()
 declare -A totals=()
+# the load before the runs (at the end it includes the runs' own)
+load_start=$(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null || echo '?')
 for deck in "${decks[@]}"; do
     name=$(basename "$deck")
     name=${name%.nml}
@@ -405,7 +408,7 @@ flags='?'
 info=("drawbead benchmark: $runs run(s) per deck and thread count, wall seconds"
     "binary: $bin"
     "compiler and flags: $flags"
-    "host: $(uname -n), $(getconf _NPROCESSORS_ONLN 2>/dev/null || echo '?') cores, load average $(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null || echo '?'), $(date '+%Y-%m-%d %H:%M')")
+    "host: $(uname -n), $(getconf _NPROCESSORS_ONLN 2>/dev/null || echo '?') cores, load average $load_start before the runs, $(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null || echo '?') after them (their own included), $(date '+%Y-%m-%d %H:%M')")
 head_main=$'deck\tthreads\tmedian_s\tmin_s\tmax_s\tcpu_s\tincrements\titerations\tassemblies\tcutbacks\tus/asm\tns/pt\tstatus'
 head_scale=$'elements\tthreads\tmedian_s\tincrements\titerations\tassemblies\tms/it\tus/el/it\tns/pt\tstatus'
 
