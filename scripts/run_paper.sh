@@ -196,27 +196,49 @@ has_rows() {
     [[ -r $1 ]] && grep -qv '^#' "$1"
 }
 
-# gp SCRIPT ARGS...: run a gnuplot script, counting failures
-gp() {
-    local script=$1 out=${*: -1}
+# gp_draw SCRIPT ARGS...: run a gnuplot script; exit status 0 if it drew
+# its output (the last argument), 1 otherwise, with the messages on stderr
+# (each figure's error file is its own: the figures are drawn in parallel)
+gp_draw() {
+    local script=$1 out=${*: -1} err status=0
     shift
-    if gnuplot -c "$scripts/$script" "$@" 2>"$figdir/.gnuplot.err"; then
+    err=$out.gnuplot.err
+    if gnuplot -c "$scripts/$script" "$@" 2>"$err"; then
         if [[ -s $out ]]; then
             note "drew $out"
         else
             note "gnuplot wrote no $out"
-            figure_failures=$((figure_failures + 1))
+            status=1
         fi
     else
         note "gnuplot failed on $out:"
-        sed 's/^/    /' "$figdir/.gnuplot.err" >&2
-        figure_failures=$((figure_failures + 1))
+        sed 's/^/    /' "$err" >&2
+        status=1
     fi
     # gnuplot's warnings (a skipped file, ...) are worth seeing
-    if [[ -s $figdir/.gnuplot.err ]]; then
-        sed 's/^/    gnuplot: /' "$figdir/.gnuplot.err" >&2
+    if [[ -s $err ]]; then
+        sed 's/^/    gnuplot: /' "$err" >&2
     fi
-    rm -f "$figdir/.gnuplot.err"
+    rm -f "$err"
+    return "$status"
+}
+
+# gp SCRIPT ARGS...: draw a figure in the background, at most jobs_max at a
+# time (gnuplot takes about 0.4 s a figure); gp_wait collects them
+gp_pids=()
+gp() {
+    while (($(jobs -rp | wc -l) >= jobs_max)); do wait -n; done
+    gp_draw "$@" &
+    gp_pids+=("$!")
+}
+
+# gp_wait: wait for every figure, counting the failures
+gp_wait() {
+    local pid
+    for pid in "${gp_pids[@]}"; do
+        wait "$pid" || figure_failures=$((figure_failures + 1))
+    done
+    gp_pids=()
 }
 
 # curves FILE NAME:LABEL[:STYLE]...: gnuplot arguments FILE::LABEL[::STYLE]
@@ -297,6 +319,7 @@ if ((do_figures)); then
 
         shape_figures fig5a_beadA_steel A 'mild steel, clamped, μ = 0.1'
         shape_figures fig6_beadB_steel B 'mild steel, clamped, μ = 0.1'
+        gp_wait
     fi
 fi
 
