@@ -278,8 +278,11 @@ contains
       character(len=200) :: msg
       if (rec%folded) return
       h = m%thickness
-      fold_at = maxloc(abs(s%gpn(igp_curvature, :, :)))
-      rho_h = abs(s%gpn(igp_curvature, fold_at(1), fold_at(2)))*h
+      ! the first station (element order) within round-off of the largest
+      ! |rho|: a symmetric sheet has two, and round-off must not choose
+      rho_h = maxval(abs(s%gpn(igp_curvature, :, :)))
+      fold_at = maxloc(merge(1, 0, abs(s%gpn(igp_curvature, :, :)) >= (1.0_dp - 1.0e-9_dp)*rho_h))
+      rho_h = rho_h*h
       if (rho_h <= fold_curvature) return
       rec%folded = .true.
       rec%fold_phase = phase
