@@ -17,7 +17,7 @@ module tearing
    public :: check_localization, check_fold, strain_limit_indicator, first_crossing
    public :: check_load_maximum, tear_at_snap_back, track_load_maximum, neck_confirmed, &
              load_at_maximum, parabola_vertex
-   public :: tear_force_drop, neck_strain_rate
+   public :: tear_force_drop, neck_strain_rate, tear_confirm_pull
 
    !> A maximum of the restraining force is a neck once the force has fallen
    !> tear_force_drop (relative) below it and either the fastest-stretching
@@ -27,6 +27,12 @@ module tearing
    !> long takes the whole pull (rate ~1); steady drawing through a bead
    !> stretches each station by 0.05-0.08 per h of pull.
    real(dp), parameter :: tear_force_drop = 0.01_dp, neck_strain_rate = 0.5_dp
+   !> ... and the force has stayed that far below it over a pull of at least
+   !> tear_confirm_pull (in h): past the section's maximum load the path may
+   !> jump to a neighbouring branch, the force dipping 1-1.5% for a few
+   !> thousandths of h and recovering (bead A mu 0, contact section);
+   !> a neck's fall lasts 0.1h or more (the continuum's: 0.2h to fall 1%)
+   real(dp), parameter :: tear_confirm_pull = 0.05_dp
 
 contains
 
@@ -127,7 +133,7 @@ contains
       growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
       call set_torn(m, rec, load_at_maximum(rec%pull_delta(1:rec%n_pull), &
                                             rec%pull_force(1:rec%n_pull), rec%max_at), &
-                    maxloc(growth, 1))
+                    first_near_max(growth))
       torn = .true.
    end subroutine tear_at_snap_back
 
@@ -170,7 +176,7 @@ contains
       real(dp), intent(out) :: tear_load
       integer, intent(out) :: k
       real(dp), allocatable :: growth(:)
-      integer :: n
+      integer :: n, j
       n = size(force)
       k = 0
       tear_load = 0.0_dp
@@ -185,10 +191,18 @@ contains
          strain_at_max = strain
          return
       end if
+      ! the drop must have lasted tear_confirm_pull: j is the first sample
+      ! of the run of samples that are all below the threshold
+      j = n
+      do while (j > max_at + 1)
+         if (force(j - 1) > (1.0_dp - tear_force_drop)*force(max_at)) exit
+         j = j - 1
+      end do
+      if (delta(n) - delta(j) < tear_confirm_pull*h) return
       growth = strain - strain_at_max
       if (neck_confirmed(force(max_at), force(n), (delta(n) - delta(max_at))/h, growth, &
                          section_lost)) then
-         k = maxloc(growth, 1)
+         k = first_near_max(growth)
          tear_load = load_at_maximum(delta, force, max_at)
       end if
    end subroutine track_load_maximum
@@ -273,26 +287,37 @@ contains
       character(len=*), intent(in) :: phase
       real(dp), intent(in) :: p, fold_curvature
       type(run_record), intent(inout) :: rec
-      integer :: fold_at(2)
+      integer :: fold_at
       real(dp) :: rho_h, h
       character(len=200) :: msg
       if (rec%folded) return
       h = m%thickness
       ! the first station (element order) within round-off of the largest
       ! |rho|: a symmetric sheet has two, and round-off must not choose
-      rho_h = maxval(abs(s%gpn(igp_curvature, :, :)))
-      fold_at = maxloc(merge(1, 0, abs(s%gpn(igp_curvature, :, :)) >= (1.0_dp - 1.0e-9_dp)*rho_h))
-      rho_h = rho_h*h
+      fold_at = first_near_max(pack(abs(s%gpn(igp_curvature, :, :)), .true.))
+      rho_h = maxval(abs(s%gpn(igp_curvature, :, :)))*h
       if (rho_h <= fold_curvature) return
       rec%folded = .true.
       rec%fold_phase = phase
       rec%fold_load = p
-      rec%fold_s = gauss_position(m, fold_at(2), fold_at(1))
+      rec%fold_s = station_position(m, fold_at)
       write (msg, '(a,f6.2,a,f8.3,a,es10.3,a)') 'the sheet folds: |rho| h = ', &
          rho_h, ' at s/h = ', rec%fold_s/h, ', load/h = ', p/h, &
          ' in '//phase//': beyond the shell theory, later results depend on the mesh'
       call warn(msg, 'check_fold')
    end subroutine check_fold
+
+   !> FIRST_NEAR_MAX: the first entry within 1e-9 (relative) of the largest
+   !> value: on a symmetric sheet two stations tie to round-off, and
+   !> round-off must not choose between them.
+   !>  v  [in]  the values (not empty)
+   pure function first_near_max(v) result(k)
+      real(dp), intent(in) :: v(:)
+      integer :: k
+      real(dp) :: vmax
+      vmax = maxval(v)
+      k = maxloc(merge(1, 0, v >= vmax - 1.0e-9_dp*abs(vmax)), 1)
+   end function first_near_max
 
    !> STATION_POSITION: reference abscissa of station k of the flat list
    !> of Gauss stations, element by element (k = (e - 1) n_gauss + ig).
