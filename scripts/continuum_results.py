@@ -320,8 +320,11 @@ def summary_text(run_dir, info, title, extra=()):
             den = (x0 - x1) * (x0 - x2) * (x1 - x2)
             a = (x2 * (y1 - y0) + x1 * (y0 - y2) + x0 * (y2 - y1)) / den
             b = (x2 * x2 * (y0 - y1) + x1 * x1 * (y2 - y0) + x0 * x0 * (y1 - y2)) / den
+            # the vertex, kept between the outer two points (unevenly
+            # spaced rows can put it far outside, as the program's
+            # load_at_maximum does)
             if a < 0:
-                d_pk = -b / (2 * a)
+                d_pk = min(max(-b / (2 * a), x0), x2)
                 n_pk = y0 + (a * (d_pk ** 2 - x0 ** 2) + b * (d_pk - x0))
         vals += [('max_restraining_force_N_per_mm', n_pk),
                  ('max_restraining_force_over_Eh', n_pk / eh),

@@ -132,7 +132,7 @@ contains
       if (rec%max_at == 0 .or. rec%max_at >= rec%n_pull) return
       growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
       call set_torn(m, rec, load_at_maximum(rec%pull_delta(1:rec%n_pull), &
-                                            rec%pull_force(1:rec%n_pull), rec%max_at), &
+                                            rec%pull_force(1:rec%n_pull), rec%max_at, m%thickness), &
                     first_near_max(growth))
       torn = .true.
    end subroutine tear_at_snap_back
@@ -203,7 +203,7 @@ contains
       if (neck_confirmed(force(max_at), force(n), (delta(n) - delta(max_at))/h, growth, &
                          section_lost)) then
          k = first_near_max(growth)
-         tear_load = load_at_maximum(delta, force, max_at)
+         tear_load = load_at_maximum(delta, force, max_at, h)
       end if
    end subroutine track_load_maximum
 
@@ -233,20 +233,72 @@ contains
    end function neck_confirmed
 
    !> LOAD_AT_MAXIMUM: the load parameter at a maximum of a sampled force
-   !> history: the vertex of the parabola through the sample at the
-   !> maximum and its two neighbours, kept between the neighbours; the
-   !> sample itself when it has no neighbour on one side.
-   !>  delta, force [in]  the history (increasing delta)
+   !> history.  Past a section's maximum load the force carries noise (the
+   !> path jumping between neighbouring branches: dips of 1-1.5% for a few
+   !> thousandths of h, docs/theory.md §7.4), and three samples next to
+   !> such a dip put the vertex of a flat maximum anywhere between them.
+   !> The vertex of the least-squares parabola through the samples within
+   !> top_window h of the largest and within top_band (relative) of its
+   !> force, kept within their range, when there are at least four such
+   !> samples and the parabola opens downward; otherwise the vertex of the
+   !> parabola through the largest sample and its two neighbours, kept
+   !> between the neighbours; the sample itself when it is the first or
+   !> the last.
+   !>  delta, force [in]  the history (increasing delta), mm and N/mm
    !>  i            [in]  index of the largest sample
-   pure function load_at_maximum(delta, force, i) result(x)
-      real(dp), intent(in) :: delta(:), force(:)
+   !>  h            [in]  thickness, mm
+   pure function load_at_maximum(delta, force, i, h) result(x)
+      real(dp), intent(in) :: delta(:), force(:), h
       integer, intent(in) :: i
-      real(dp) :: x, y
+      real(dp), parameter :: top_band = 0.005_dp, top_window = 0.1_dp
+      real(dp) :: x, y, s(0:4), r(0:2), u, lo, hi, a(3, 3), det, c1, c2
+      integer :: j, k, n_top
       x = delta(i)
       if (i <= 1 .or. i >= size(delta)) return
+      ! the normal equations of y = c0 + c1 u + c2 u^2, u = delta - delta(i)
+      s = 0.0_dp
+      r = 0.0_dp
+      n_top = 0
+      lo = delta(i)
+      hi = delta(i)
+      do j = 1, size(delta)
+         if (force(j) < (1.0_dp - top_band)*force(i)) cycle
+         if (abs(delta(j) - delta(i)) > top_window*h) cycle
+         n_top = n_top + 1
+         u = delta(j) - delta(i)
+         lo = min(lo, delta(j))
+         hi = max(hi, delta(j))
+         do k = 0, 4
+            s(k) = s(k) + u**k
+         end do
+         do k = 0, 2
+            r(k) = r(k) + force(j)*u**k
+         end do
+      end do
+      if (n_top >= 4) then
+         a = reshape([s(0), s(1), s(2), s(1), s(2), s(3), s(2), s(3), s(4)], [3, 3])
+         det = det3(a)
+         if (abs(det) > 0.0_dp) then
+            ! Cramer's rule for c1 and c2
+            c1 = det3(reshape([s(0), s(1), s(2), r(0), r(1), r(2), s(2), s(3), s(4)], [3, 3]))/det
+            c2 = det3(reshape([s(0), s(1), s(2), s(1), s(2), s(3), r(0), r(1), r(2)], [3, 3]))/det
+            if (c2 < 0.0_dp) then
+               x = min(max(delta(i) - 0.5_dp*c1/c2, lo), hi)
+               return
+            end if
+         end if
+      end if
       call parabola_vertex(delta(i - 1:i + 1), force(i - 1:i + 1), x, y)
       x = min(max(x, delta(i - 1)), delta(i + 1))
    end function load_at_maximum
+
+   !> DET3: the determinant of a 3 x 3 matrix.
+   pure function det3(a) result(d)
+      real(dp), intent(in) :: a(3, 3)
+      real(dp) :: d
+      d = a(1, 1)*(a(2, 2)*a(3, 3) - a(2, 3)*a(3, 2)) - a(1, 2)*(a(2, 1)*a(3, 3) - a(2, 3)*a(3, 1)) &
+          + a(1, 3)*(a(2, 1)*a(3, 2) - a(2, 2)*a(3, 1))
+   end function det3
 
    !> PARABOLA_VERTEX: vertex of the parabola through three points with
    !> increasing abscissae (Newton's divided differences).  Without
