@@ -320,9 +320,15 @@ def summary_text(run_dir, info, title, extra=()):
             den = (x0 - x1) * (x0 - x2) * (x1 - x2)
             a = (x2 * (y1 - y0) + x1 * (y0 - y2) + x0 * (y2 - y1)) / den
             b = (x2 * x2 * (y0 - y1) + x1 * x1 * (y2 - y0) + x0 * x0 * (y1 - y2)) / den
+            # the vertex, kept between the outer two points; a vertex
+            # more than 0.5% above the largest row comes from a dip of a
+            # noisy force next to it (unevenly spaced rows), and the row
+            # itself is kept
             if a < 0:
-                d_pk = -b / (2 * a)
-                n_pk = y0 + (a * (d_pk ** 2 - x0 ** 2) + b * (d_pk - x0))
+                dv = min(max(-b / (2 * a), x0), x2)
+                nv = y0 + (a * (dv ** 2 - x0 ** 2) + b * (dv - x0))
+                if nv <= 1.005 * y1:
+                    d_pk, n_pk = dv, nv
         vals += [('max_restraining_force_N_per_mm', n_pk),
                  ('max_restraining_force_over_Eh', n_pk / eh),
                  ('max_restraining_force_at_delta_over_h', d_pk),

@@ -13,8 +13,9 @@
 # elements are doubled), runs it into OUTDIR/<deck>_<n>/ (with its log in
 # run.log there) and prints one table row per run: punch force at full
 # lock, peak and steady restraining force, the paper's pointwise tearing
-# point delta_cr and the mesh-objective one, and the change of each force
-# from the previous mesh, in percent.
+# point delta_cr and the averaged-strain one, the tearing prediction
+# (tearing_delta_over_h), and the change of each force and of the tearing
+# prediction from the previous mesh, in percent.
 #
 # Step study (docs/theory.md §8.3): for each deck and each factor f of -f
 # (default "1 0.5": every increment halved) a copy of the deck on its own
@@ -76,7 +77,7 @@ thickness() {
 ran() { :; }
 
 mesh_study() {
-    local deck name n0 h n inc s f p st dcr dnl prev_f prev_p prev_s
+    local deck name n0 h n inc s f p st dcr dnl tear prev_f prev_p prev_s prev_t
     pool_decks=()
     pool_dirs=()
     for deck in "$@"; do
@@ -94,19 +95,21 @@ mesh_study() {
     done
     run_pool 2 ran
 
-    printf '%-28s %5s %12s %12s %12s %10s %10s %8s %8s %8s\n' deck n F_lock/Eh N_peak/Eh N_steady/Eh dcr/h dcr_nl/h dF% dNpk% dNst%
+    printf '%-28s %5s %12s %12s %12s %10s %10s %10s %8s %8s %8s %8s\n' deck n F_lock/Eh N_peak/Eh \
+        N_steady/Eh dcr/h dcr_nl/h tear/h dF% dNpk% dNst% dtear%
     for deck in "$@"; do
         name=$(basename "$deck" .nml)
-        prev_f=""; prev_p=""; prev_s=""
+        prev_f=""; prev_p=""; prev_s=""; prev_t=""
         for n in $counts; do
             s="$outdir/${name}_$n/summary.txt"
             f=$(value "$s" lock_force_over_Eh); p=$(value "$s" peak_force_over_Eh)
             st=$(value "$s" steady_force_over_Eh); dcr=$(value "$s" delta_cr_over_h)
-            dnl=$(value "$s" delta_cr_nonlocal_over_h)
-            printf '%-28s %5s %12.5g %12.5g %12.5g %10.4g %10.4g %8s %8s %8s\n' "$name" "$n" \
+            dnl=$(value "$s" delta_cr_nonlocal_over_h); tear=$(value "$s" tearing_delta_over_h)
+            printf '%-28s %5s %12.5g %12.5g %12.5g %10.4g %10.4g %10.4g %8s %8s %8s %8s\n' "$name" "$n" \
                 "${f/none/nan}" "${p/none/nan}" "${st/none/nan}" "${dcr/none/nan}" "${dnl/none/nan}" \
-                "$(change "$prev_f" "$f")" "$(change "$prev_p" "$p")" "$(change "$prev_s" "$st")"
-            prev_f=$f; prev_p=$p; prev_s=$st
+                "${tear/none/nan}" "$(change "$prev_f" "$f")" "$(change "$prev_p" "$p")" \
+                "$(change "$prev_s" "$st")" "$(change "$prev_t" "$tear")"
+            prev_f=$f; prev_p=$p; prev_s=$st; prev_t=$tear
         done
     done
 }

@@ -17,7 +17,7 @@ module tearing
    public :: check_localization, check_fold, strain_limit_indicator, first_crossing
    public :: check_load_maximum, tear_at_snap_back, track_load_maximum, neck_confirmed, &
              load_at_maximum, parabola_vertex
-   public :: tear_force_drop, neck_strain_rate
+   public :: tear_force_drop, neck_strain_rate, tear_confirm_pull
 
    !> A maximum of the restraining force is a neck once the force has fallen
    !> tear_force_drop (relative) below it and either the fastest-stretching
@@ -27,6 +27,12 @@ module tearing
    !> long takes the whole pull (rate ~1); steady drawing through a bead
    !> stretches each station by 0.05-0.08 per h of pull.
    real(dp), parameter :: tear_force_drop = 0.01_dp, neck_strain_rate = 0.5_dp
+   !> ... and the force has stayed that far below it over a pull of at least
+   !> tear_confirm_pull (in h): past the section's maximum load the path may
+   !> jump to a neighbouring branch, the force dipping 1-1.5% for a few
+   !> thousandths of h and recovering (bead A mu 0, contact section);
+   !> a neck's fall lasts 0.1h or more (the continuum's: 0.2h to fall 1%)
+   real(dp), parameter :: tear_confirm_pull = 0.05_dp
 
 contains
 
@@ -126,8 +132,8 @@ contains
       if (rec%max_at == 0 .or. rec%max_at >= rec%n_pull) return
       growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
       call set_torn(m, rec, load_at_maximum(rec%pull_delta(1:rec%n_pull), &
-                                            rec%pull_force(1:rec%n_pull), rec%max_at), &
-                    maxloc(growth, 1))
+                                            rec%pull_force(1:rec%n_pull), rec%max_at, m%thickness), &
+                    first_near_max(growth))
       torn = .true.
    end subroutine tear_at_snap_back
 
@@ -170,7 +176,7 @@ contains
       real(dp), intent(out) :: tear_load
       integer, intent(out) :: k
       real(dp), allocatable :: growth(:)
-      integer :: n
+      integer :: n, j
       n = size(force)
       k = 0
       tear_load = 0.0_dp
@@ -185,11 +191,19 @@ contains
          strain_at_max = strain
          return
       end if
+      ! the drop must have lasted tear_confirm_pull: j is the first sample
+      ! of the run of samples that are all below the threshold
+      j = n
+      do while (j > max_at + 1)
+         if (force(j - 1) > (1.0_dp - tear_force_drop)*force(max_at)) exit
+         j = j - 1
+      end do
+      if (delta(n) - delta(j) < tear_confirm_pull*h) return
       growth = strain - strain_at_max
       if (neck_confirmed(force(max_at), force(n), (delta(n) - delta(max_at))/h, growth, &
                          section_lost)) then
-         k = maxloc(growth, 1)
-         tear_load = load_at_maximum(delta, force, max_at)
+         k = first_near_max(growth)
+         tear_load = load_at_maximum(delta, force, max_at, h)
       end if
    end subroutine track_load_maximum
 
@@ -219,20 +233,72 @@ contains
    end function neck_confirmed
 
    !> LOAD_AT_MAXIMUM: the load parameter at a maximum of a sampled force
-   !> history: the vertex of the parabola through the sample at the
-   !> maximum and its two neighbours, kept between the neighbours; the
-   !> sample itself when it has no neighbour on one side.
-   !>  delta, force [in]  the history (increasing delta)
+   !> history.  Past a section's maximum load the force carries noise (the
+   !> path jumping between neighbouring branches: dips of 1-1.5% for a few
+   !> thousandths of h, docs/theory.md §7.4), and three samples next to
+   !> such a dip put the vertex of a flat maximum anywhere between them.
+   !> The vertex of the least-squares parabola through the samples within
+   !> top_window h of the largest and within top_band (relative) of its
+   !> force, kept within their range, when there are at least four such
+   !> samples and the parabola opens downward; otherwise the vertex of the
+   !> parabola through the largest sample and its two neighbours, kept
+   !> between the neighbours; the sample itself when it is the first or
+   !> the last.
+   !>  delta, force [in]  the history (increasing delta), mm and N/mm
    !>  i            [in]  index of the largest sample
-   pure function load_at_maximum(delta, force, i) result(x)
-      real(dp), intent(in) :: delta(:), force(:)
+   !>  h            [in]  thickness, mm
+   pure function load_at_maximum(delta, force, i, h) result(x)
+      real(dp), intent(in) :: delta(:), force(:), h
       integer, intent(in) :: i
-      real(dp) :: x, y
+      real(dp), parameter :: top_band = 0.005_dp, top_window = 0.1_dp
+      real(dp) :: x, y, s(0:4), r(0:2), u, lo, hi, a(3, 3), det, c1, c2
+      integer :: j, k, n_top
       x = delta(i)
       if (i <= 1 .or. i >= size(delta)) return
+      ! the normal equations of y = c0 + c1 u + c2 u^2, u = delta - delta(i)
+      s = 0.0_dp
+      r = 0.0_dp
+      n_top = 0
+      lo = delta(i)
+      hi = delta(i)
+      do j = 1, size(delta)
+         if (force(j) < (1.0_dp - top_band)*force(i)) cycle
+         if (abs(delta(j) - delta(i)) > top_window*h) cycle
+         n_top = n_top + 1
+         u = delta(j) - delta(i)
+         lo = min(lo, delta(j))
+         hi = max(hi, delta(j))
+         do k = 0, 4
+            s(k) = s(k) + u**k
+         end do
+         do k = 0, 2
+            r(k) = r(k) + force(j)*u**k
+         end do
+      end do
+      if (n_top >= 4) then
+         a = reshape([s(0), s(1), s(2), s(1), s(2), s(3), s(2), s(3), s(4)], [3, 3])
+         det = det3(a)
+         if (abs(det) > 0.0_dp) then
+            ! Cramer's rule for c1 and c2
+            c1 = det3(reshape([s(0), s(1), s(2), r(0), r(1), r(2), s(2), s(3), s(4)], [3, 3]))/det
+            c2 = det3(reshape([s(0), s(1), s(2), s(1), s(2), s(3), r(0), r(1), r(2)], [3, 3]))/det
+            if (c2 < 0.0_dp) then
+               x = min(max(delta(i) - 0.5_dp*c1/c2, lo), hi)
+               return
+            end if
+         end if
+      end if
       call parabola_vertex(delta(i - 1:i + 1), force(i - 1:i + 1), x, y)
       x = min(max(x, delta(i - 1)), delta(i + 1))
    end function load_at_maximum
+
+   !> DET3: the determinant of a 3 x 3 matrix.
+   pure function det3(a) result(d)
+      real(dp), intent(in) :: a(3, 3)
+      real(dp) :: d
+      d = a(1, 1)*(a(2, 2)*a(3, 3) - a(2, 3)*a(3, 2)) - a(1, 2)*(a(2, 1)*a(3, 3) - a(2, 3)*a(3, 1)) &
+          + a(1, 3)*(a(2, 1)*a(3, 2) - a(2, 2)*a(3, 1))
+   end function det3
 
    !> PARABOLA_VERTEX: vertex of the parabola through three points with
    !> increasing abscissae (Newton's divided differences).  Without
@@ -273,23 +339,37 @@ contains
       character(len=*), intent(in) :: phase
       real(dp), intent(in) :: p, fold_curvature
       type(run_record), intent(inout) :: rec
-      integer :: fold_at(2)
+      integer :: fold_at
       real(dp) :: rho_h, h
       character(len=200) :: msg
       if (rec%folded) return
       h = m%thickness
-      fold_at = maxloc(abs(s%gpn(igp_curvature, :, :)))
-      rho_h = abs(s%gpn(igp_curvature, fold_at(1), fold_at(2)))*h
+      ! the first station (element order) within round-off of the largest
+      ! |rho|: a symmetric sheet has two, and round-off must not choose
+      fold_at = first_near_max(pack(abs(s%gpn(igp_curvature, :, :)), .true.))
+      rho_h = maxval(abs(s%gpn(igp_curvature, :, :)))*h
       if (rho_h <= fold_curvature) return
       rec%folded = .true.
       rec%fold_phase = phase
       rec%fold_load = p
-      rec%fold_s = gauss_position(m, fold_at(2), fold_at(1))
+      rec%fold_s = station_position(m, fold_at)
       write (msg, '(a,f6.2,a,f8.3,a,es10.3,a)') 'the sheet folds: |rho| h = ', &
          rho_h, ' at s/h = ', rec%fold_s/h, ', load/h = ', p/h, &
          ' in '//phase//': beyond the shell theory, later results depend on the mesh'
       call warn(msg, 'check_fold')
    end subroutine check_fold
+
+   !> FIRST_NEAR_MAX: the first entry within 1e-9 (relative) of the largest
+   !> value: on a symmetric sheet two stations tie to round-off, and
+   !> round-off must not choose between them.
+   !>  v  [in]  the values (not empty)
+   pure function first_near_max(v) result(k)
+      real(dp), intent(in) :: v(:)
+      integer :: k
+      real(dp) :: vmax
+      vmax = maxval(v)
+      k = maxloc(merge(1, 0, v >= vmax - 1.0e-9_dp*abs(vmax)), 1)
+   end function first_near_max
 
    !> STATION_POSITION: reference abscissa of station k of the flat list
    !> of Gauss stations, element by element (k = (e - 1) n_gauss + ig).
