@@ -164,14 +164,17 @@ contains
       integer, intent(in) :: side
       character(len=*), intent(out) :: errmsg
       integer, intent(out), optional :: stat
-      integer :: ibad
+      integer :: ibad, i
       real(dp) :: xmn, xmx, ymn, ymx
       call check_chain(segs, side, cont_tol_rel, .true., errmsg, ibad)
       if (present(stat)) stat = ibad
       if (ibad /= 0) return
       tool%nseg = size(segs)
       tool%seg = segs
-      tool%box = reshape([(segs(ibad)%box, ibad=1, size(segs))], [4, size(segs)])
+      allocate (tool%box(4, size(segs)))
+      do i = 1, size(segs)
+         tool%box(:, i) = segs(i)%box
+      end do
       tool%side = side
       call chain_extent(segs, xmn, xmx, ymn, ymx)
       tool%size = max(xmx - xmn, ymx - ymn)
