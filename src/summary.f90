@@ -101,7 +101,9 @@ contains
       real(dp) :: h, eh, fsteady, steady_at, thinning, energy(5), pull_work, de(5)
       logical :: steady
       character(len=32) :: status
-      text = ''
+      ! (allocate, not text = '': gfortran 12 then warns that text may be
+      ! used uninitialized)
+      allocate (character(len=0) :: text)
       h = m%thickness
       eh = m%youngs*h
       if (rec%status == run_no_convergence) then
