@@ -232,6 +232,28 @@ def gen_bench(ctx):
     return lambda raw: out
 
 
+def gen_contact_cost(ctx):
+    """docs/performance.md: the paper decks with the paper's section and with
+    the contact section (copies with normal_stress = 'contact'), one
+    thread, scripts/bench.sh --markdown, verbatim."""
+    decks = []
+    cdir = os.path.join(ctx.tmp, "contact_decks")
+    os.makedirs(cdir, exist_ok=True)
+    for f in sorted(os.listdir(os.path.join(ROOT, "input"))):
+        if not (f.startswith("fig") and f.endswith(".nml")):
+            continue
+        text = read_doc(os.path.join("input", f))
+        if "normal_stress = 'none'" not in text:
+            raise RuntimeError(f"input/{f} does not set normal_stress = 'none'")
+        copy = os.path.join(cdir, f[:-4] + "_contact.nml")
+        with open(copy, "w") as out:
+            out.write(text.replace("normal_stress = 'none'", "normal_stress = 'contact'"))
+        decks += [os.path.join("input", f), copy]
+    out = script_output(ctx, ["scripts/bench.sh", "--markdown", "-n", "5", "--threads", "1",
+                              "--no-scaling", "--keep", os.path.join(ctx.tmp, "cost")] + decks)
+    return lambda raw: out
+
+
 GENERATORS = {
     "readme_example": ("README.md", gen_readme_example, "bin/drawbead on input/fig5a_beadA_steel.nml"),
     "paper_table": ("docs/validation.md", gen_paper_table, "every input/fig*.nml and strip_tension.nml"),
@@ -242,9 +264,12 @@ GENERATORS = {
                             "scripts/convergence.sh -m -n \"96 192 384\" on fig9c"),
     "tearing_convergence": ("docs/validation.md", gen_tearing_convergence,
                             "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks"),
+    "contact_cost": ("docs/performance.md", gen_contact_cost,
+                     "scripts/bench.sh on every input/fig*.nml and its copy with the contact section"
+                     " (not checkable)"),
     "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5: 1 and 2 threads, scaling (not checkable)"),
 }
-UNCHECKABLE = {"bench"}
+UNCHECKABLE = {"bench", "contact_cost"}
 
 
 # ---------------------------------------------------------------------------
