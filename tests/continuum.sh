@@ -32,8 +32,9 @@ trap 'rm -rf "$work"' EXIT
 fail=0
 coarse=(--through 2 --per-h 1 --initial-inc 0.05 --max-inc 0.1 --no-plot --bin "$bin")
 
+# CalculiX on both cores (bead A: about 9 s instead of 12 on one)
 for case in strip bead_a_short; do
-    if ! scripts/continuum_check.sh "tests/decks/continuum_$case.nml" -o "$work/$case" "${coarse[@]}" \
+    if ! OMP_NUM_THREADS=2 scripts/continuum_check.sh "tests/decks/continuum_$case.nml" -o "$work/$case" "${coarse[@]}" \
         >"$work/$case.log" 2>&1; then
         echo "FAIL continuum_check.sh on continuum_$case.nml:"
         tail -20 "$work/$case.log"
