@@ -18,7 +18,7 @@ module tearing
    public :: check_localization, check_fold, strain_limit_indicator, first_crossing
    public :: check_load_maximum, tear_at_snap_back, track_load_maximum, neck_confirmed, &
              load_at_maximum, parabola_vertex
-   public :: tear_force_drop, neck_strain_rate, tear_confirm_pull
+   public :: tear_force_drop, neck_strain_rate, tear_confirm_pull, set_torn
 
    !> A maximum of the restraining force is a neck once the force has fallen
    !> tear_force_drop (relative) below it and either the fastest-stretching
