@@ -10,8 +10,9 @@
 # Mesh study: for each deck and each element count n of -n it writes a
 # copy of the deck with n_elements = n and max_increment = 0.1h * (n0/n)
 # (n0 = the first count: the largest increment is halved whenever the
-# elements are doubled), runs it into OUTDIR/<deck>_<n>/ (with its log in
-# run.log there) and prints one table row per run: punch force at full
+# elements are doubled) and, if the deck has a refined zone, its
+# refine_element times n0/n (every element is refined), runs it into
+# OUTDIR/<deck>_<n>/ (with its log in run.log there) and prints one table row per run: punch force at full
 # lock, peak and steady restraining force, the paper's pointwise tearing
 # point delta_cr and the averaged-strain one, the tearing prediction
 # (tearing_delta_over_h), and the change of each force and of the tearing
@@ -77,7 +78,7 @@ thickness() {
 ran() { :; }
 
 mesh_study() {
-    local deck name n0 h n inc s f p st dcr dnl tear prev_f prev_p prev_s prev_t
+    local deck name n0 h n inc zone s f p st dcr dnl tear prev_f prev_p prev_s prev_t
     pool_decks=()
     pool_dirs=()
     for deck in "$@"; do
@@ -86,7 +87,10 @@ mesh_study() {
         h=$(thickness "$deck")
         for n in $counts; do
             inc=$(awk -v h="$h" -v n0="$n0" -v n="$n" 'BEGIN { printf "%.6g", 0.1 * h * n0 / n }')
+            zone=$(awk -v n0="$n0" -v n="$n" 'match($0, /refine_element *= *[0-9.eE+-]+/) {
+                v = substr($0, RSTART, RLENGTH); sub(/.*= */, "", v); printf "%.6g", v * n0 / n; exit }' "$deck")
             sed -e "s/^ *n_elements *=.*/   n_elements = $n/" \
+                -e "s/refine_element *= *[0-9.eE+-]*/refine_element = ${zone:-0}/" \
                 -e "s/^&loading/\&loading\n   max_increment = $inc/" "$deck" > "$outdir/${name}_$n.nml" ||
                 die "cannot write '$outdir/${name}_$n.nml'"
             pool_decks+=("$outdir/${name}_$n.nml")

@@ -225,6 +225,35 @@ def gen_tearing_convergence(ctx):
     return lambda raw: text
 
 
+ZONES = [("input/cc_fig5a_beadA_steel.nml", 8, 15), ("input/cc_fig6_beadB_steel.nml", 17, 24),
+         ("input/cc_beadA_steel_mu0.nml", 8, 15)]
+
+
+def gen_tearing_zone(ctx):
+    """docs/validation.md: the clamped steel continuum-check decks with a
+    refined zone where the neck forms (&sheet refine_from, refine_to; its
+    elements 0.156h at 80 elements, halved with them),
+    scripts/convergence.sh -m -n "80 160 320", verbatim."""
+    zdir = os.path.join(ctx.tmp, "zone_decks")
+    os.makedirs(zdir, exist_ok=True)
+    decks = []
+    for deck, s0, s1 in ZONES:
+        text = read_doc(deck)
+        if "\n&sheet\n" not in text:
+            raise RuntimeError(f"{deck} has no &sheet line of its own")
+        copy = os.path.join(zdir, os.path.basename(deck)[:-4] + "_zone.nml")
+        with open(copy, "w") as out:
+            out.write(text.replace("\n&sheet\n", "\n&sheet\n   refine_from = %g, refine_to = %g, "
+                                   "refine_element = 0.156\n" % (s0, s1), 1))
+        decks.append(copy)
+    out = script_output(ctx, ["scripts/convergence.sh", "-m", "-o", os.path.join(ctx.tmp, "zone"),
+                              "-n", "80 160 320"] + decks)
+    zones = ", ".join("%s [%g, %g]" % (os.path.basename(d)[:-4], a, b) for d, a, b in ZONES)
+    text = ("```\n$ scripts/convergence.sh -m -n \"80 160 320\" <the decks with refine_element = 0.156>\n"
+            "# zones (refine_from, refine_to): " + zones + "\n" + out + "\n```")
+    return lambda raw: text
+
+
 def gen_bench(ctx):
     """docs/performance.md: scripts/bench.sh --markdown, verbatim."""
     out = script_output(ctx, ["scripts/bench.sh", "--markdown", "-n", "5",
@@ -264,6 +293,8 @@ GENERATORS = {
                             "scripts/convergence.sh -m -n \"96 192 384\" on fig9c"),
     "tearing_convergence": ("docs/validation.md", gen_tearing_convergence,
                             "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks"),
+    "tearing_zone": ("docs/validation.md", gen_tearing_zone,
+                     "scripts/convergence.sh -m on the clamped cc_ steel decks with a refined zone"),
     "contact_cost": ("docs/performance.md", gen_contact_cost,
                      "scripts/bench.sh on every input/fig*.nml and its copy with the contact section"
                      " (not checkable)"),

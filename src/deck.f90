@@ -42,6 +42,7 @@ module deck
    use errors, only: error_list, add_error, warn
    use text, only: lower, num, itoa, file_exists
    use bead_builder, only: bead_a_over_h
+   use mesh, only: zone_counts
    implicit none
    private
    public :: deck_type, group_names, resolve_defaults, validate_deck, max_umat_props, &
@@ -86,6 +87,9 @@ module deck
       real(dp) :: back_tension = 0.0_dp               ! N/mm, with 'free' only
       character(len=16) :: normal_stress = 'contact'  ! 'contact' | 'none' (the paper's plane-stress section)
       real(dp) :: strain_gradient = unset             ! the necking length term; default 1 with 'contact', 0 with 'none'
+      real(dp) :: refine_from = 0.0_dp                ! refined zone of the mesh: from s/h (reference position)
+      real(dp) :: refine_to = 0.0_dp                  ! ... to s/h
+      real(dp) :: refine_element = 0.0_dp            ! element length in the zone, units of h (0: no zone)
       ! &material
       real(dp) :: youngs_modulus = 207000.0_dp        ! MPa
       real(dp) :: poissons_ratio = 0.3_dp
@@ -248,6 +252,7 @@ contains
       call check_choice(errs, at(p, 'sheet', 'normal_stress'), d%normal_stress, &
                         [character(len=16) :: 'contact', 'none'])
       call check_real(errs, at(p, 'sheet', 'strain_gradient'), d%strain_gradient, lo=0.0_dp, hi=100.0_dp)
+      call check_refined_zone(d, p, errs)
       ! the contact section prescribes tau22 through the built-in law's
       ! reduction to plane stress (docs/theory.md §12), which a user's UMAT
       ! does not offer
@@ -413,6 +418,51 @@ contains
       call check_real(errs, at(p, 'loading', 'step_tolerance'), d%step_tolerance, &
                       lo=0.0_dp, hi=0.5_dp, hi_open=.true.)
    end subroutine validate_deck
+
+   !> check_refined_zone -- the refined zone of &sheet (refine_from,
+   !> refine_to, refine_element, units of h): with refine_element > 0, a
+   !> zone inside the sheet, elements shorter than the uniform mesh's, a
+   !> uniform mesh outside (mesh_beta = 1) and a mesh the program holds.
+   !> With refine_element = 0 a zone given is ignored, with a warning.
+   !>
+   !> d     [in]     the resolved deck.
+   !> p     [in]     the deck's path.
+   !> errs  [in,out] problems are appended.
+   subroutine check_refined_zone(d, p, errs)
+      type(deck_type), intent(in) :: d
+      character(len=*), intent(in) :: p
+      type(error_list), intent(inout) :: errs
+      real(dp) :: half, coarse
+      integer :: counts(3), n_before
+      call check_real(errs, at(p, 'sheet', 'refine_element'), d%refine_element, lo=0.0_dp)
+      call check_real(errs, at(p, 'sheet', 'refine_from'), d%refine_from)
+      call check_real(errs, at(p, 'sheet', 'refine_to'), d%refine_to)
+      if (.not. (d%refine_element > 0.0_dp)) then
+         if (ieee_is_finite(d%refine_from) .and. ieee_is_finite(d%refine_to)) then
+            if (abs(d%refine_from) > 0.0_dp .or. abs(d%refine_to) > 0.0_dp) call warn(at(p, 'sheet', 'refine_from')// &
+               ': the zone is ignored with refine_element = 0 (no refined zone)')
+         end if
+         return
+      end if
+      ! the rest needs a valid sheet
+      if (.not. (is_positive(d%thickness) .and. is_positive(d%length) .and. d%n_elements >= 2)) return
+      if (.not. (ieee_is_finite(d%refine_from) .and. ieee_is_finite(d%refine_to) &
+                 .and. ieee_is_finite(d%refine_element))) return
+      n_before = errs%count
+      half = 0.5_dp*d%length/d%thickness
+      coarse = 2.0_dp*half/real(d%n_elements, dp)
+      call check_real(errs, at(p, 'sheet', 'refine_from'), d%refine_from, lo=-half, hi=half, hi_open=.true.)
+      call check_real(errs, at(p, 'sheet', 'refine_to'), d%refine_to, lo=d%refine_from, hi=half, lo_open=.true.)
+      call check_real(errs, at(p, 'sheet', 'refine_element'), d%refine_element, &
+                      lo=1.0e-3_dp, hi=coarse, hi_open=.true.)
+      if (abs(d%mesh_beta - 1.0_dp) > 0.0_dp) call fail(errs, at(p, 'sheet', 'mesh_beta'), &
+         'must be 1 with a refined zone (refine_element > 0): the zone replaces the grading')
+      if (errs%count > n_before) return
+      call zone_counts(d%n_elements, half, d%refine_from, d%refine_to, d%refine_element, counts)
+      if (sum(counts) > max_elements) call fail(errs, at(p, 'sheet', 'refine_element'), &
+         'gives '//itoa(sum(counts))//' elements, more than '//itoa(max_elements)// &
+         ' (the largest mesh the program holds in memory)')
+   end subroutine check_refined_zone
 
    !> check_real -- require a finite real within optional bounds.
    !>

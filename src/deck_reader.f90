@@ -267,10 +267,11 @@ contains
       character(len=echo_len), intent(out) :: lines(echo_rows)
 
       real(dp) :: thickness, length, mesh_beta, back_tension, strain_gradient
+      real(dp) :: refine_from, refine_to, refine_element
       integer :: n_elements
       character(len=16) :: left_edge, normal_stress
       namelist /sheet/ thickness, length, n_elements, mesh_beta, left_edge, back_tension, &
-         normal_stress, strain_gradient
+         normal_stress, strain_gradient, refine_from, refine_to, refine_element
 
       thickness = d%thickness
       length = d%length
@@ -280,6 +281,9 @@ contains
       back_tension = d%back_tension
       normal_stress = d%normal_stress
       strain_gradient = d%strain_gradient
+      refine_from = d%refine_from
+      refine_to = d%refine_to
+      refine_element = d%refine_element
       select case (action)
       case (act_read_unit)
          read (unit, nml=sheet, iostat=ios, iomsg=msg)
@@ -298,6 +302,9 @@ contains
       d%back_tension = back_tension
       d%normal_stress = normal_stress
       d%strain_gradient = strain_gradient
+      d%refine_from = refine_from
+      d%refine_to = refine_to
+      d%refine_element = refine_element
    end subroutine nml_sheet
 
    !> nml_material -- namelist &material (arguments as group_io).

@@ -8,7 +8,7 @@ module mesh
    use kinds, only: dp
    implicit none
    private
-   public :: graded_nodes, element_dofs, node_dof, is_slope_dof, dofs_per_node, half_band
+   public :: graded_nodes, zone_counts, zone_nodes, element_dofs, node_dof, is_slope_dof, dofs_per_node, half_band
    public :: dof_v, dof_v_slope, dof_w, dof_w_slope
 
    integer, parameter :: dofs_per_node = 4, half_band = 7
@@ -38,6 +38,57 @@ contains
       x(1) = -half
       x(n_el + 1) = half
    end subroutine graded_nodes
+
+   !> ZONE_COUNTS: the numbers of elements left of, in and right of a
+   !> refined zone [s0, s1] of [-L, L] (docs/theory.md §2): outside it the
+   !> uniform mesh's element length 2L/n_el, rounded to whole elements (at
+   !> least one on a side the zone does not reach), inside it `size`,
+   !> rounded likewise.  The zone serves the neck, whose width is of order
+   !> h/sqrt(12) with the strain-gradient term (§12.7): the restraining
+   !> force's maximum converges on elements of 0.1h there, while the rest of
+   !> the sheet converges on the uniform 0.6h (docs/validation.md).
+   !>  n_el    [in]  elements of the uniform mesh (>= 2)
+   !>  half    [in]  half length L
+   !>  s0, s1  [in]  the zone, -L <= s0 < s1 <= L (reference positions)
+   !>  size    [in]  element length in the zone, > 0
+   !>  counts  [out] elements left of, in and right of the zone
+   pure subroutine zone_counts(n_el, half, s0, s1, size, counts)
+      integer, intent(in) :: n_el
+      real(dp), intent(in) :: half, s0, s1, size
+      integer, intent(out) :: counts(3)
+      real(dp) :: coarse
+      coarse = 2.0_dp*half/real(n_el, dp)
+      counts(1) = 0
+      if (s0 > -half) counts(1) = max(1, nint((s0 + half)/coarse))
+      counts(2) = max(1, nint((s1 - s0)/size))
+      counts(3) = 0
+      if (s1 < half) counts(3) = max(1, nint((half - s1)/coarse))
+   end subroutine zone_counts
+
+   !> ZONE_NODES: node positions of a mesh with a refined zone: uniform on
+   !> [-L, s0], [s0, s1] and [s1, L] with the element counts of zone_counts.
+   !>  counts  [in]  elements left of, in and right of the zone
+   !>  half    [in]  half length L
+   !>  s0, s1  [in]  the zone
+   !>  x       [out] sum(counts) + 1 node positions, ascending, x(1) = -L,
+   !>                x(end) = L
+   pure subroutine zone_nodes(counts, half, s0, s1, x)
+      integer, intent(in) :: counts(3)
+      real(dp), intent(in) :: half, s0, s1
+      real(dp), intent(out) :: x(sum(counts) + 1)
+      real(dp) :: ends(4)
+      integer :: part, i, k
+      ends = [-half, s0, s1, half]
+      x(1) = -half
+      k = 1
+      do part = 1, 3
+         do i = 1, counts(part)
+            k = k + 1
+            x(k) = ends(part) + (ends(part + 1) - ends(part))*real(i, dp)/real(counts(part), dp)
+         end do
+      end do
+      x(k) = half
+   end subroutine zone_nodes
 
    !> NODE_DOF: global equation number of dof `which` (dof_v ... dof_w_slope)
    !> of node `node`.

@@ -3,7 +3,7 @@
 module model
    use kinds, only: dp
    use hermite, only: n_gauss, gauss_xi, simpson_rule
-   use mesh, only: graded_nodes, dofs_per_node
+   use mesh, only: graded_nodes, zone_counts, zone_nodes, dofs_per_node
    use section, only: n_hist, section_init
    use tools, only: tool_type
    use element, only: n_gp
@@ -66,25 +66,37 @@ contains
 
    !> MODEL_INIT: mesh, quadrature and material of a tool-free sheet.
    !>  m        [out] the model
-   !>  n_el     [in]  number of elements
+   !>  n_el     [in]  number of elements (of the uniform mesh with zone)
    !>  length   [in]  2L, mm
-   !>  beta     [in]  mesh grading exponent (4.2)
+   !>  beta     [in]  mesh grading exponent (4.2), not used with zone
    !>  h        [in]  thickness, mm
    !>  npt      [in]  Simpson stations through the thickness
    !>  mat      [in]  the material (mat%youngs = E)
-   subroutine model_init(m, n_el, length, beta, h, npt, mat)
+   !>  zone     [in]  optional: a refined zone [s0, s1] (mm) with elements of
+   !>                 zone(3) mm (mesh's zone_counts); m%n_el is then the count
+   subroutine model_init(m, n_el, length, beta, h, npt, mat, zone)
       type(model_type), intent(out) :: m
       integer, intent(in) :: n_el, npt
       real(dp), intent(in) :: length, beta, h
       type(material_type), intent(in) :: mat
+      real(dp), intent(in), optional :: zone(3)
+      integer :: counts(3)
       m%n_el = n_el
-      m%n_nodes = n_el + 1
+      if (present(zone)) then
+         call zone_counts(n_el, 0.5_dp*length, zone(1), zone(2), zone(3), counts)
+         m%n_el = sum(counts)
+      end if
+      m%n_nodes = m%n_el + 1
       m%n_dof = dofs_per_node*m%n_nodes
       m%npt = npt
       m%thickness = h
       m%youngs = mat%youngs
       allocate (m%x(m%n_nodes), m%z(npt), m%wz(npt))
-      call graded_nodes(n_el, 0.5_dp*length, beta, m%x)
+      if (present(zone)) then
+         call zone_nodes(counts, 0.5_dp*length, zone(1), zone(2), m%x)
+      else
+         call graded_nodes(n_el, 0.5_dp*length, beta, m%x)
+      end if
       call simpson_rule(npt, h, m%z, m%wz)
       m%material = mat
       m%max_load_strain = max_load_strain(mat, m%max_load_stress)

@@ -26,10 +26,12 @@ module record
       character(len=8) :: nl_phase = ''
       real(dp) :: nl_load_cr = 0.0_dp, nl_s_star = 0.0_dp
       ! the program's tearing prediction (&control tearing_criterion,
-      ! docs/theory.md §7.4): phase, load parameter and reference position
+      ! docs/theory.md §7.4): phase, load parameter, reference position and
+      ! the length of the element there (the load maximum converges on
+      ! elements of 0.1h or shorter where the neck forms)
       logical :: torn = .false.
       character(len=8) :: tear_phase = ''
-      real(dp) :: tear_load = 0.0_dp, tear_s = 0.0_dp
+      real(dp) :: tear_load = 0.0_dp, tear_s = 0.0_dp, tear_element = 0.0_dp
       ! the load-maximum candidate: index in the pull history of the largest
       ! restraining force so far (0: none yet) and ln(lambda) at every Gauss
       ! station (flat list, element by element) in that state

@@ -56,7 +56,12 @@ contains
       if (errs%count > 0) return
 
       h = d%thickness
-      call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, mat)
+      if (d%refine_element > 0.0_dp) then
+         call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, mat, &
+                         zone=h*[d%refine_from, d%refine_to, d%refine_element])
+      else
+         call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, mat)
+      end if
       m%has_tools = d%bead /= 'none'
       if (m%has_tools) then
          m%tool(1) = upper

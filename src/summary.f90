@@ -143,6 +143,7 @@ contains
       call add(text, 'tearing_phase = '//trim(merge(rec%tear_phase, 'none    ', rec%torn)))
       call put(text, 'tearing_delta_over_h', rec%tear_load/h, rec%torn)
       call put(text, 'tearing_s_over_h', rec%tear_s/h, rec%torn)
+      call put(text, 'tearing_element_over_h', rec%tear_element/h, rec%torn .and. rec%tear_element > 0.0_dp)
       call put(text, 'tearing_length_over_h', ctl%tearing_length_over_h, .true.)
       call put(text, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
       ! the first state bent tighter than fold_curvature: past it the forces
