@@ -283,7 +283,8 @@ def summary_text(run_dir, info, title, extra=()):
     """The compared numbers of a run folder as 'key = value' lines.
 
     punch force at 98% of the lock depth and at full lock (lock.dat),
-    sheet tension N at the end of locking, the largest restraining force
+    sheet tension N at the end of locking and at 98% of the lock depth
+    (where the binder faces do not yet squeeze the sheet), the largest restraining force
     and the pull at which it occurs (vertex of the parabola through the
     largest row and its neighbours), the peak mid-surface strain lambda-1
     after locking and the straight-part strain: the median of lambda-1
@@ -305,11 +306,13 @@ def summary_text(run_dir, info, title, extra=()):
                   fs[-1] if abs(xs[-1] - full) < 1e-6 * max(1.0, full) else None),
                  ('lock_tension_N_per_mm', lock[-1][8]),
                  ('lock_tension_over_Eh', lock[-1][8] / eh),
+                 ('lock_tension_98_N_per_mm', interp(xs, [r[8] for r in lock], 0.98 * full)),
                  ('lock_reached_over_h', xs[-1])]
     else:
         vals += [(k, None) for k in ('punch_force_98_N_per_mm', 'punch_force_98_over_Eh',
                                      'punch_force_full_lock_N_per_mm', 'lock_tension_N_per_mm',
-                                     'lock_tension_over_Eh', 'lock_reached_over_h')]
+                                     'lock_tension_over_Eh', 'lock_tension_98_N_per_mm',
+                                     'lock_reached_over_h')]
     if pull:
         ds, ns = [r[0] for r in pull], [r[2] for r in pull]
         k = max(range(len(ns)), key=lambda i: ns[i])
