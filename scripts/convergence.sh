@@ -133,9 +133,9 @@ step_deck() {
     local deck=$1 f=$2 h ii mi mf sf st lines
     h=$(thickness "$deck")
     ii=$(loading_value "$deck" initial_increment "$(awk -v h="${h:-1}" 'BEGIN { print 0.05 * h }')")
-    mi=$(loading_value "$deck" max_increment "$(awk -v h="${h:-1}" 'BEGIN { print 0.1 * h }')")
+    mi=$(loading_value "$deck" max_increment "$(awk -v h="${h:-1}" 'BEGIN { print 0.2 * h }')")
     mf=$(loading_value "$deck" max_force_change 0.1)
-    sf=$(loading_value "$deck" squeeze_force_change 0.02)
+    sf=$(loading_value "$deck" squeeze_force_change 0.04)
     st=$(loading_value "$deck" step_tolerance 5e-3)
     lines=$(awk -v f="$f" -v ii="$ii" -v mi="$mi" -v mf="$mf" -v sf="$sf" -v st="$st" 'BEGIN {
         printf "   initial_increment = %.8g\\n   max_increment = %.8g\\n", ii * f, mi * f

@@ -12,7 +12,7 @@ module analysis
    use hermite, only: n_gauss
    use element, only: igp_strain
    use band, only: band_matrix, band_init, band_error_message
-   use mesh, only: half_band, node_dof, dof_v, dof_w, dof_w_slope
+   use mesh, only: half_band, node_dof, dof_v, dof_w, dof_w_slope, dofs_per_node
    use model, only: model_type, state_type, load_type, load_init
    use contact, only: ich_penetration
    use controls, only: controls_type
@@ -20,7 +20,7 @@ module analysis
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular, newton_solve_failed
    use step_control, only: judge_force_change, next_increment, cutback_factor, extrapolation_error, &
-                           judge_error
+                           judge_error, displacement_error
    use tearing, only: check_localization, check_fold, strain_limit_indicator, check_load_maximum, &
                       tear_at_snap_back
    use energy, only: energy_totals, add_increment_work
@@ -104,12 +104,12 @@ contains
       type(output_files), intent(inout) :: out
       type(run_record), intent(inout) :: rec
       type(band_matrix) :: kb
-      real(dp), allocatable :: nl_old(:), r(:), u_prev(:), ind_old(:, :)
+      real(dp), allocatable :: nl_old(:), r(:), u_prev(:), ind_old(:, :), dof_scale(:)
       type(load_type) :: ld
       type(newton_result) :: nr
       real(dp) :: p, dt, dt_prev, h, eh
       real(dp) :: reaction, punch, lift, pen, min_ind, force, force_change, target, tool_work
-      real(dp) :: next_snapshot, ell, prev_conjugate, err, dt_err
+      real(dp) :: next_snapshot, ell, prev_conjugate, err, dt_err, err_redone
       integer :: pulled
       logical :: have_prev, have_force_prev, redo, paper_met, snapped
       character(len=16) :: tag
@@ -118,7 +118,12 @@ contains
       eh = m%youngs*h
       ell = ctl%tearing_length_over_h*h
       pulled = node_dof(m%n_nodes, dof_v)
-      allocate (r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el))
+      allocate (r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el), dof_scale(m%n_dof))
+      ! the weight of each dof in the displacement error: 1 for v and w (mm),
+      ! h for the slopes v' and w' (docs/theory.md §8.3)
+      dof_scale = h
+      dof_scale(node_dof(1, dof_v)::dofs_per_node) = 1.0_dp
+      dof_scale(node_dof(1, dof_w)::dofs_per_node) = 1.0_dp
       call band_init(kb, m%n_dof, half_band, half_band)
       p = p0
       dt = ctl%initial_increment
@@ -133,6 +138,8 @@ contains
       end if
       dt_prev = dt
       have_prev = .false.
+      ! the error estimate of the last attempt redone at this load (< 0: none)
+      err_redone = -1.0_dp
       ! the force two converged states back, for the error estimate
       prev_conjugate = 0.0_dp
       have_force_prev = .false.
@@ -202,13 +209,27 @@ contains
             s%u1 = s%u
             cycle
          end if
-         ! the local error of the force path (docs/theory.md §8.3): an
-         ! increment where the path turns too fast is redone shorter
+         ! the local error of the path (docs/theory.md §8.3): an increment
+         ! where the path turns too fast is redone shorter.  Locking, that of
+         ! the punch force (smooth, the result read at full lock); pulling,
+         ! that of the displacements (the pull force carries a noise of
+         ! stations entering contact and small branch jumps)
          err = -1.0_dp
-         if (have_force_prev) err = extrapolation_error(force, rec%last_conjugate, prev_conjugate, &
-                                                        dt, dt_prev, eh)
-         call judge_error(ctl, err, dt, redo, dt_err)
+         if (phase == 'lock') then
+            if (have_force_prev) err = extrapolation_error(force, rec%last_conjugate, prev_conjugate, &
+                                                           dt, dt_prev, eh)
+         else if (have_prev) then
+            err = displacement_error(s%u1, s%u, u_prev, dt, dt_prev, h, dof_scale)
+         end if
+         call judge_error(ctl, err, dt, redo, dt_err, final=phase == 'lock' .and. p + dt >= p1 - 1.0e-12_dp*h)
+         ! a redo shortens the increment by q < 0.8 and a second-order
+         ! estimate by at least as much (by q^2 without an earlier increment):
+         ! one that kept more than half of its value marks a jump of the path
+         ! (the state moving to a neighbouring branch), which no shorter
+         ! increment resolves; it is taken as it is (docs/theory.md §8.3)
+         if (redo .and. err_redone > 0.0_dp) redo = err <= 0.5_dp*err_redone
          if (redo) then
+            err_redone = err
             rec%cutbacks = rec%cutbacks + 1
             write (output_unit, '(a5,1x,a,es10.3,a,es9.2)') phase, 'cutback  d/h=', dt/h, &
                '  error', err
@@ -216,6 +237,7 @@ contains
             s%u1 = s%u
             cycle
          end if
+         err_redone = -1.0_dp
          ind_old = s%indicator
          u_prev = s%u
          dt_prev = dt

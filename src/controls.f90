@@ -23,8 +23,8 @@ module controls
       integer :: max_iterations = 20
       real(dp) :: tolerance = 1.0e-8_dp            ! relative residual; sqrt of it on the correction
       real(dp) :: max_force_change = 0.1_dp        ! target relative change of the phase's force per increment
-      real(dp) :: squeeze_force_change = 0.02_dp   ! the same in the binder's squeeze (docs/theory.md §8.3)
-      real(dp) :: step_tolerance = 5.0e-3_dp       ! local error of the force path per increment (docs/theory.md §8.3; 0: off)
+      real(dp) :: squeeze_force_change = 0.04_dp   ! the same in the binder's squeeze (docs/theory.md §8.3)
+      real(dp) :: step_tolerance = 5.0e-3_dp       ! local error of the path per increment (docs/theory.md §8.3; 0: off)
       logical :: predictor = .true.                ! extrapolate the last increment's motion
       ! tearing and fold criteria
       logical :: stop_at_localization = .true.

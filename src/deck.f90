@@ -124,12 +124,12 @@ module deck
       real(dp) :: pull_distance = unset               ! 10 h
       real(dp) :: initial_increment = unset           ! 0.05 h
       real(dp) :: min_increment = unset               ! 1e-6 h
-      real(dp) :: max_increment = unset               ! 0.1 h
+      real(dp) :: max_increment = unset               ! 0.2 h
       integer :: max_iterations = 20
       real(dp) :: tolerance = 1.0e-8_dp               ! relative residual and correction
       real(dp) :: max_force_change = 0.1_dp           ! target relative change of F (lock) or N (pull) per increment
-      real(dp) :: squeeze_force_change = 0.02_dp      ! the same where F rises faster than H^5 while locking
-      real(dp) :: step_tolerance = 5.0e-3_dp          ! local error of the force path per increment (0: off)
+      real(dp) :: squeeze_force_change = 0.04_dp      ! the same where F rises faster than H^5 while locking
+      real(dp) :: step_tolerance = 5.0e-3_dp          ! local error of the path per increment (0: off)
    end type deck_type
 
 contains
@@ -143,7 +143,7 @@ contains
    !> Scaled by h = thickness (or by the default thickness when the given one
    !> is unusable, so that one bad value does not cause others): length 50 h,
    !> the tools r1 ... h2 of the paper's bead A (bead_a_over_h), pull_distance 10 h, min_increment 1e-6 h, max_increment
-   !> 0.1 h, initial_increment 0.05 h (kept within the min/max increments),
+   !> 0.2 h, initial_increment 0.05 h (kept within the min/max increments),
    !> lock_depth h1 + r1 (full lock) with a rectangular bead, 0 without one;
    !> with a profile bead it must be given.
    !>
@@ -167,9 +167,10 @@ contains
       if (is_unset(d%h2)) d%h2 = bead_a_over_h(6)*h
       if (is_unset(d%pull_distance)) d%pull_distance = 10.0_dp*h
       if (is_unset(d%min_increment)) d%min_increment = 1.0e-6_dp*h
-      ! 0.1h resolves the force curves; where the path turns, the error
+      ! 0.2h resolves the force curves; where the path turns, the error
       ! estimate of the step control (step_tolerance) shortens it
-      if (is_unset(d%max_increment)) d%max_increment = 0.1_dp*h
+      ! (docs/theory.md §8.3: 0.3h moved the frictionless lock forces 0.7%)
+      if (is_unset(d%max_increment)) d%max_increment = 0.2_dp*h
       if (is_unset(d%initial_increment)) then
          d%initial_increment = 0.05_dp*h
          if (is_positive(d%min_increment)) d%initial_increment = &
