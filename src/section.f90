@@ -172,15 +172,21 @@ contains
    pure function section_localization(wz, hist, h, e) result(indicator)
       real(dp), intent(in) :: wz(:), hist(:, :), h, e
       real(dp) :: indicator
-      real(dp) :: c11, c12, c22, lam, zb, wl2, t, tr, dt
+      real(dp) :: c11, c12, c22, zb, wl2, t, tr, dt, rt
+      real(dp) :: wl(size(wz))
       integer :: k, npt
       npt = size(wz)
       t = hist(npt, ih_zbar) - hist(1, ih_zbar)
+      rt = sqrt(12.0_dp)/t
+      ! w (D - tau)/Lambda^2 with 1/Lambda^2 = exp(-2 ln Lambda): no
+      ! division, and a loop without a sum, which vectorizes (libmvec's exp)
+      do k = 1, npt
+         wl(k) = wz(k)*(hist(k, ih_tangent) - hist(k, ih_stress))*exp(-2.0_dp*hist(k, ih_strain))
+      end do
       c11 = 0.0_dp; c12 = 0.0_dp; c22 = 0.0_dp
       do k = 1, npt
-         lam = exp(hist(k, ih_strain))
-         zb = sqrt(12.0_dp)*hist(k, ih_zbar)/t
-         wl2 = wz(k)*(hist(k, ih_tangent) - hist(k, ih_stress))/(lam*lam)
+         zb = rt*hist(k, ih_zbar)
+         wl2 = wl(k)
          c11 = c11 + wl2
          c12 = c12 + wl2*zb
          c22 = c22 + wl2*zb*zb
@@ -201,18 +207,19 @@ contains
       real(dp), intent(in) :: z(:)
       real(dp), intent(inout) :: hist(:, :)
       integer :: k, mid
-      real(dp) :: g0, g1
+      real(dp) :: g(size(z))
       mid = (size(z) + 1)/2
+      ! one exp per station (each enters two trapezoids); a loop of its own
+      ! so that it vectorizes (libmvec)
+      do k = 1, size(z)
+         g(k) = exp(hist(k, ih_eps22))
+      end do
       hist(mid, ih_zbar) = 0.0_dp
       do k = mid + 1, size(z)
-         g0 = exp(hist(k - 1, ih_eps22))
-         g1 = exp(hist(k, ih_eps22))
-         hist(k, ih_zbar) = hist(k - 1, ih_zbar) + 0.5_dp*(g0 + g1)*(z(k) - z(k - 1))
+         hist(k, ih_zbar) = hist(k - 1, ih_zbar) + 0.5_dp*(g(k - 1) + g(k))*(z(k) - z(k - 1))
       end do
       do k = mid - 1, 1, -1
-         g0 = exp(hist(k + 1, ih_eps22))
-         g1 = exp(hist(k, ih_eps22))
-         hist(k, ih_zbar) = hist(k + 1, ih_zbar) + 0.5_dp*(g0 + g1)*(z(k) - z(k + 1))
+         hist(k, ih_zbar) = hist(k + 1, ih_zbar) + 0.5_dp*(g(k + 1) + g(k))*(z(k) - z(k + 1))
       end do
    end subroutine section_update_zbar
 end module section
