@@ -206,7 +206,7 @@ contains
       real(dp), intent(inout) :: pnewdt
 
       real(dp) :: e_mod, nu, r_value, r, e_ps, d12, hill_a, hill_b
-      real(dp), dimension(nblock) :: sig_tr1, sig_tr2, sy_n, h_n, seq_tr
+      real(dp), dimension(nblock) :: sig_tr1, sig_tr2, sy_n, h_n, seq2_tr
       ! packed plastic points (index j; idx(j) is the point of the block)
       integer :: idx(nblock), np, j, k
       real(dp), dimension(nblock) :: s_tr, t_tr, ep_n, sy_p, h_p, seq_p, q_s, q_t, seq, &
@@ -245,7 +245,8 @@ contains
       do k = 1, nblock
          sig_tr1(k) = stress(k, 1) + e_ps*dstran(k, 1) + d12*dstran(k, 2)
          sig_tr2(k) = stress(k, 2) + d12*dstran(k, 1) + e_ps*dstran(k, 2)
-         seq_tr(k) = sqrt(hill_a*(sig_tr1(k) + sig_tr2(k))**2 + hill_b*(sig_tr1(k) - sig_tr2(k))**2)
+         ! sbar_trial^2: its root is needed only where the point yields
+         seq2_tr(k) = hill_a*(sig_tr1(k) + sig_tr2(k))**2 + hill_b*(sig_tr1(k) - sig_tr2(k))**2
          sy_n(k) = statev(k, isv_flow_stress)
          h_n(k) = statev(k, isv_hardening_slope)
       end do
@@ -256,9 +257,12 @@ contains
       ! Points whose trial state lies outside the yield surface.  A trial
       ! state with sbar_trial <= (1 + tol_yield) sigma_y is elastic (also
       ! elastic unloading); a NaN is not, so that the checks below fail it.
+      ! Compared squared (sbar_trial^2 <= ((1 + tol_yield) sigma_y)^2 with
+      ! sigma_y > 0), without a root per point; a point with sigma_y <= 0
+      ! goes to the checks below, which fail it.
       np = 0
       do k = 1, nblock
-         if (.not. seq_tr(k) <= (1.0_dp + tol_yield)*sy_n(k)) then
+         if (.not. (seq2_tr(k) <= ((1.0_dp + tol_yield)*sy_n(k))**2 .and. sy_n(k) > 0.0_dp)) then
             np = np + 1
             idx(np) = k
          end if
@@ -275,7 +279,7 @@ contains
          spd_p(j) = spd(k)
          sy_p(j) = sy_n(k)
          h_p(j) = h_n(k)
-         seq_p(j) = seq_tr(k)
+         seq_p(j) = sqrt(seq2_tr(k))
          ok = ok .and. sy_n(k) > 0.0_dp .and. ieee_is_finite(sig_tr1(k)) .and. &
               ieee_is_finite(sig_tr2(k))
       end do
