@@ -205,14 +205,14 @@ contains
       real(dp), intent(in) :: props(nprops)
       real(dp), intent(inout) :: pnewdt
 
-      real(dp) :: e_mod, nu, r_value, r, e_ps, d12, hill_a, hill_b
+      real(dp) :: e_mod, nu, r_value, r, e_ps, d12, hill_a, hill_b, c_e, c_nu
       real(dp), dimension(nblock) :: sig_tr1, sig_tr2, sy_n, h_n, seq2_tr
       ! packed plastic points (index j; idx(j) is the point of the block)
       integer :: idx(nblock), np, j, k
       real(dp), dimension(nblock) :: s_tr, t_tr, ep_n, sy_p, h_p, seq_p, q_s, q_t, seq, &
                                      dp_inc, sy_end, h_end, sig1, sig2, c11, c12, c22, ct11, &
                                      eps22, sse_p, spd_p, sig_n1, sig_n2
-      real(dp) :: f1, f2, a11, a12, a22, det, x11, x12, x22, xn1, xn2, den, dsig1, dsig2
+      real(dp) :: f1, f2, a11, a12, a22, rdet, x11, x12, x22, xn1, xn2, rden, dsig1, dsig2, rs, gs
       logical :: ok
 
       ! sizes only (the values are check_props's job, done once at set-up)
@@ -231,6 +231,9 @@ contains
       ! sbar^2 = (hill_a (s11 + s33)^2 + hill_b (s11 - s33)^2), see hill_equivalent
       hill_a = 1.0_dp/(2.0_dp*(1.0_dp + r_value))
       hill_b = (1.0_dp + 2.0_dp*r_value)*hill_a
+      ! the compliance C = D^-1 = [[1, -nu], [-nu, 1]]/E
+      c_e = 1.0_dp/e_mod
+      c_nu = nu/e_mod
 
       ! D at every point: the tangent of an elastic point, and of the whole
       ! block if it fails (the plastic points are overwritten at the end)
@@ -300,7 +303,13 @@ contains
 
       ! End states of the plastic points, packed.
       do j = 1, np
-         ! flow direction n = P sigma / sbar (hill_normal)
+         ! flow direction n = P sigma / sbar (hill_normal).  The tangent
+         ! below takes 1/sbar, 1/det and 1/den once each (it had nine
+         ! divisions).  n itself keeps its two divisions: multiplying by
+         ! 1/sbar there moves eps22, hence zbar, by an ulp, which is enough to
+         ! flip cc_fig5a's localization station between mirror images
+         ! (s* = +-6.83 h, a round-off tie of the symmetric lock)
+         rs = 1.0_dp/seq(j)
          f1 = (sig1(j) - r*sig2(j))/seq(j)
          f2 = (sig2(j) - r*sig1(j))/seq(j)
          ! Consistent (algorithmic) tangent.  Linearising the converged
@@ -313,19 +322,20 @@ contains
          ! to the continuum tangent (A.1) when dp -> 0.  A = Xi^-1 is
          ! symmetric positive definite (C is, and P - n n^T is the Hessian
          ! of the convex sbar), so the explicit 2x2 inverse is safe.
-         a11 = 1.0_dp/e_mod + dp_inc(j)*(1.0_dp - f1**2)/seq(j)
-         a22 = 1.0_dp/e_mod + dp_inc(j)*(1.0_dp - f2**2)/seq(j)
-         a12 = -nu/e_mod + dp_inc(j)*(-r - f1*f2)/seq(j)
-         det = a11*a22 - a12*a12
-         x11 = a22/det
-         x22 = a11/det
-         x12 = -a12/det
+         gs = dp_inc(j)*rs
+         a11 = c_e + gs*(1.0_dp - f1**2)
+         a22 = c_e + gs*(1.0_dp - f2**2)
+         a12 = -c_nu + gs*(-r - f1*f2)
+         rdet = 1.0_dp/(a11*a22 - a12*a12)
+         x11 = a22*rdet
+         x22 = a11*rdet
+         x12 = -a12*rdet
          xn1 = x11*f1 + x12*f2
          xn2 = x12*f1 + x22*f2
-         den = f1*xn1 + f2*xn2 + h_end(j)
-         c11(j) = x11 - xn1*xn1/den
-         c12(j) = x12 - xn1*xn2/den
-         c22(j) = x22 - xn2*xn2/den
+         rden = 1.0_dp/(f1*xn1 + f2*xn2 + h_end(j))
+         c11(j) = x11 - xn1*xn1*rden
+         c12(j) = x12 - xn1*xn2*rden
+         c22(j) = x22 - xn2*xn2*rden
          ! Continuum tangent (A.1) with alpha = 1, (1,1) entry (eps33 fixed):
          ! D - (D n)(D n)^T / (n^T D n + H').
          xn1 = e_ps*f1 + d12*f2
@@ -336,7 +346,7 @@ contains
          ! d eps22 = -(nu/E)(d s11 + d s33) - d eps11p - d eps33p.
          dsig1 = sig1(j) - sig_n1(j)
          dsig2 = sig2(j) - sig_n2(j)
-         eps22(j) = eps22(j) - nu/e_mod*(dsig1 + dsig2) - dp_inc(j)*(f1 + f2)
+         eps22(j) = eps22(j) - c_nu*(dsig1 + dsig2) - dp_inc(j)*(f1 + f2)
          sse_p(j) = elastic_energy(sig1(j), sig2(j), e_mod, nu)
       end do
       ! Dissipation: on the yield surface sigma : d eps_p = sbar d ep =
@@ -352,7 +362,7 @@ contains
       ! d eps22 = -(nu/E)(d s11 + d s33) (docs/theory.md §4, no plastic part).
       do k = 1, nblock
          statev(k, isv_eps22) = statev(k, isv_eps22) &
-                                - nu/e_mod*(sig_tr1(k) - stress(k, 1) + sig_tr2(k) - stress(k, 2))
+                                - c_nu*(sig_tr1(k) - stress(k, 1) + sig_tr2(k) - stress(k, 2))
          stress(k, 1) = sig_tr1(k)
          stress(k, 2) = sig_tr2(k)
          statev(k, isv_sigma33) = sig_tr2(k)
