@@ -55,7 +55,7 @@ module material_j2
 
    public :: n_statev, isv_eqps, isv_eps22, isv_sigma33, isv_tangent, isv_flow_stress, &
              isv_hardening_slope, ip_youngs, ip_poisson, ip_r_value
-   public :: umat, umat_block, hill_equivalent, check_props
+   public :: umat, umat_block, umat_block_to, hill_equivalent, check_props
 
    !> places of the state variables in statev (module header)
    integer, parameter :: isv_eqps = 1, isv_eps22 = 2, isv_sigma33 = 3, isv_tangent = 4, &
@@ -167,17 +167,8 @@ contains
    end subroutine umat
 
    !> UMAT_BLOCK: the stress update of umat for a block of material points
-   !> at once, the block index first (the layout of Abaqus/Explicit's VUMAT).
-   !>
-   !> The points of a block are independent, so every step is a loop over
-   !> the block that the compiler can vectorize (libmvec's pow, log, exp):
-   !> the elastic predictor of all points, then the return mapping of the
-   !> points that yield, packed together (return_map_block), then the end
-   !> states.  Point k gets what umat would give it alone, to the local
-   !> tolerance: the block iterates until its slowest point has converged,
-   !> so a point may take a full step where alone it would have taken the
-   !> Taylor finish (differences of order 1e-12 in the stress, 1e-8 in H'
-   !> and the tangents that carry it).
+   !> at once, the block index first (the layout of Abaqus/Explicit's VUMAT),
+   !> in place: umat_block_to with the start state copied aside (see there).
    !>
    !> nblock  [in]     number of material points, >= 1.
    !> stress  [in,out] (nblock, 2) Kirchhoff stress (sigma11, sigma33) per
@@ -204,6 +195,67 @@ contains
       real(dp), intent(in) :: dstran(nblock, 2)
       real(dp), intent(in) :: props(nprops)
       real(dp), intent(inout) :: pnewdt
+      real(dp) :: stress_n(nblock, 2), statev_n(nblock, nstatv), sse_n(nblock), spd_n(nblock)
+
+      stress_n = stress
+      statev_n = statev
+      sse_n = sse
+      spd_n = spd
+      call umat_block_to(nblock, stress_n, statev_n, sse_n, spd_n, stress, statev, ddsdde, sse, &
+                         spd, dstran, props, nprops, nstatv, pnewdt)
+   end subroutine umat_block
+
+   !> UMAT_BLOCK_TO: the stress update of umat for a block of material
+   !> points at once, the block index first (the layout of Abaqus/Explicit's
+   !> VUMAT), from the start state in stress_n ... spd_n into the end state
+   !> in stress ... spd (distinct arrays): every output is written once and
+   !> the start state is read where it is, so the section needs no copy of
+   !> its converged history into the trial one (umat_block is the in-place
+   !> form).
+   !>
+   !> The points of a block are independent, so every step is a loop over
+   !> the block that the compiler can vectorize (libmvec's pow, log, exp):
+   !> the elastic predictor of all points, then the return mapping of the
+   !> points that yield, packed together (return_map_block), then the end
+   !> states.  Point k gets what umat would give it alone, to the local
+   !> tolerance: the block iterates until its slowest point has converged,
+   !> so a point may take a full step where alone it would have taken the
+   !> Taylor finish (differences of order 1e-12 in the stress, 1e-8 in H'
+   !> and the tangents that carry it).
+   !>
+   !> nblock  [in]     number of material points, >= 1.
+   !> stress_n [in]    (nblock, 2) Kirchhoff stress (sigma11, sigma33) per
+   !>                  point at the start of the increment.
+   !> statev_n [in]    (nblock, nstatv) state variables per point (see umat)
+   !>                  at the start.
+   !> sse_n   [in]     (nblock) elastic strain energy density at the start
+   !>                  (read only if the update fails).
+   !> spd_n   [in]     (nblock) plastic dissipation density at the start.
+   !> stress  [out]    (nblock, 2) the stress at the end of the increment.
+   !> statev  [out]    (nblock, nstatv) the state variables at the end.
+   !> ddsdde  [out]    (nblock, 2, 2) consistent tangent per point.
+   !> sse     [out]    (nblock) elastic strain energy density at the end.
+   !> spd     [out]    (nblock) plastic dissipation density at the end.
+   !> dstran  [in]     (nblock, 2) log strain increment (deps11, deps33).
+   !> props   [in]     material constants, shared by the block (see umat).
+   !> nprops  [in]     size of props.
+   !> nstatv  [in]     second extent of statev.
+   !> pnewdt  [in,out] as for umat; if the return mapping fails at any point,
+   !>                  pnewdt = min(pnewdt, 0.5) and stress, statev, sse, spd
+   !>                  of the whole block are the start state (ddsdde = D).
+   pure subroutine umat_block_to(nblock, stress_n, statev_n, sse_n, spd_n, stress, statev, &
+                                 ddsdde, sse, spd, dstran, props, nprops, nstatv, pnewdt)
+      integer, intent(in) :: nblock, nprops, nstatv
+      real(dp), intent(in) :: stress_n(nblock, 2), statev_n(nblock, nstatv), sse_n(nblock), &
+                              spd_n(nblock)
+      real(dp), intent(out) :: stress(nblock, 2)
+      real(dp), intent(out) :: statev(nblock, nstatv)
+      real(dp), intent(out) :: ddsdde(nblock, 2, 2)
+      real(dp), intent(out) :: sse(nblock)
+      real(dp), intent(out) :: spd(nblock)
+      real(dp), intent(in) :: dstran(nblock, 2)
+      real(dp), intent(in) :: props(nprops)
+      real(dp), intent(inout) :: pnewdt
 
       real(dp) :: e_mod, nu, r_value, r, e_ps, d12, hill_a, hill_b, c_e, c_nu
       real(dp), dimension(nblock) :: sig_tr1, sig_tr2, sy_n, h_n, seq2_tr
@@ -219,6 +271,11 @@ contains
       if (nstatv < n_statev .or. .not. law_sizes_ok(props, nprops)) then
          ddsdde = 0.0_dp
          pnewdt = min(pnewdt, 0.0_dp)
+         ! a failed update returns the start state
+         stress = stress_n
+         statev = statev_n
+         sse = sse_n
+         spd = spd_n
          return
       end if
 
@@ -246,15 +303,15 @@ contains
       ! and statev(isv_hardening_slope), which a virgin point
       ! (statev(isv_flow_stress) <= 0) has not filled yet.
       do k = 1, nblock
-         sig_tr1(k) = stress(k, 1) + e_ps*dstran(k, 1) + d12*dstran(k, 2)
-         sig_tr2(k) = stress(k, 2) + d12*dstran(k, 1) + e_ps*dstran(k, 2)
+         sig_tr1(k) = stress_n(k, 1) + e_ps*dstran(k, 1) + d12*dstran(k, 2)
+         sig_tr2(k) = stress_n(k, 2) + d12*dstran(k, 1) + e_ps*dstran(k, 2)
          ! sbar_trial^2: its root is needed only where the point yields
          seq2_tr(k) = hill_a*(sig_tr1(k) + sig_tr2(k))**2 + hill_b*(sig_tr1(k) - sig_tr2(k))**2
-         sy_n(k) = statev(k, isv_flow_stress)
-         h_n(k) = statev(k, isv_hardening_slope)
+         sy_n(k) = statev_n(k, isv_flow_stress)
+         h_n(k) = statev_n(k, isv_hardening_slope)
       end do
       do k = 1, nblock
-         if (.not. sy_n(k) > 0.0_dp) call flow_stress(statev(k, isv_eqps), props, nprops, sy_n(k), h_n(k))
+         if (.not. sy_n(k) > 0.0_dp) call flow_stress(statev_n(k, isv_eqps), props, nprops, sy_n(k), h_n(k))
       end do
 
       ! Points whose trial state lies outside the yield surface.  A trial
@@ -275,11 +332,11 @@ contains
          k = idx(j)
          s_tr(j) = sig_tr1(k) + sig_tr2(k)
          t_tr(j) = sig_tr1(k) - sig_tr2(k)
-         ep_n(j) = statev(k, isv_eqps)
-         sig_n1(j) = stress(k, 1)
-         sig_n2(j) = stress(k, 2)
-         eps22(j) = statev(k, isv_eps22)
-         spd_p(j) = spd(k)
+         ep_n(j) = statev_n(k, isv_eqps)
+         sig_n1(j) = stress_n(k, 1)
+         sig_n2(j) = stress_n(k, 2)
+         eps22(j) = statev_n(k, isv_eps22)
+         spd_p(j) = spd_n(k)
          sy_p(j) = sy_n(k)
          h_p(j) = h_n(k)
          seq_p(j) = sqrt(seq2_tr(k))
@@ -298,6 +355,11 @@ contains
       end if
       if (.not. ok) then
          pnewdt = min(pnewdt, pnewdt_cut)
+         ! a failed update returns the start state
+         stress = stress_n
+         statev = statev_n
+         sse = sse_n
+         spd = spd_n
          return
       end if
 
@@ -361,8 +423,9 @@ contains
       ! Thickness strain: plane stress sigma22 = 0 gives
       ! d eps22 = -(nu/E)(d s11 + d s33) (docs/theory.md §4, no plastic part).
       do k = 1, nblock
-         statev(k, isv_eps22) = statev(k, isv_eps22) &
-                                - c_nu*(sig_tr1(k) - stress(k, 1) + sig_tr2(k) - stress(k, 2))
+         statev(k, isv_eqps) = statev_n(k, isv_eqps)
+         statev(k, isv_eps22) = statev_n(k, isv_eps22) &
+                                - c_nu*(sig_tr1(k) - stress_n(k, 1) + sig_tr2(k) - stress_n(k, 2))
          stress(k, 1) = sig_tr1(k)
          stress(k, 2) = sig_tr2(k)
          statev(k, isv_sigma33) = sig_tr2(k)
@@ -370,7 +433,10 @@ contains
          statev(k, isv_flow_stress) = sy_n(k)
          statev(k, isv_hardening_slope) = h_n(k)
          sse(k) = elastic_energy(sig_tr1(k), sig_tr2(k), e_mod, nu)
+         spd(k) = spd_n(k)
       end do
+      ! state variables beyond the law's (a caller's larger statev) pass through
+      if (nstatv > n_statev) statev(:, n_statev + 1:) = statev_n(:, n_statev + 1:)
       do j = 1, np
          k = idx(j)
          stress(k, 1) = sig1(j)
@@ -388,7 +454,7 @@ contains
          ddsdde(k, 1, 2) = c12(j)
          ddsdde(k, 2, 2) = c22(j)
       end do
-   end subroutine umat_block
+   end subroutine umat_block_to
    !> Hill 1948 equivalent stress for normal anisotropy with zero thickness
    !> stress, paper appendix (A.3) with sigma<22> = 0:
    !>   sbar^2 = s11^2 + s33^2 - (2R/(1+R)) s11 s33.

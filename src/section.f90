@@ -34,8 +34,8 @@
 !> paper's plane-stress update unchanged.
 module section
    use kinds, only: dp
-   use material_j2, only: n_statev, isv_eqps, isv_eps22, isv_tangent
-   use material, only: material_type, material_update
+   use material_j2, only: n_statev, isv_eqps, isv_eps22, isv_tangent, umat_block_to
+   use material, only: material_type, material_update, material_builtin
    implicit none
    private
    public :: n_hist, ih_strain, ih_zbar, ih_stress, ih_sse, ih_spd, ih_statev, ih_eqps, &
@@ -112,9 +112,26 @@ contains
          dstran(k, 1) = log_lam(k) - hn(k, ih_strain)
          dstran(k, 2) = 0.0_dp
       end do
-      h1 = hn
       with_s22 = any(abs(face_stress) > 0.0_dp) .or. any(abs(hn(:, ih_stress22)) > 0.0_dp)
-      if (with_s22) then
+      if (.not. with_s22 .and. mat%kind == material_builtin) then
+         ! the built-in law reads the converged history where it is and
+         ! writes every column of the trial one once (umat_block_to): no copy
+         ! of hn into h1 first
+         call umat_block_to(npt, hn(:, ih_stress:ih_stress + 1), hn(:, ih_statev:ih_statev + n_statev - 1), &
+                            hn(:, ih_sse), hn(:, ih_spd), h1(:, ih_stress:ih_stress + 1), &
+                            h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
+                            h1(:, ih_spd), dstran, mat%props, size(mat%props), n_statev, pnewdt)
+         if (pnewdt < 1.0_dp) then
+            h1 = hn
+            return
+         end if
+         do k = 1, npt
+            h1(k, ih_zbar) = hn(k, ih_zbar)
+            h1(k, ih_stress22) = hn(k, ih_stress22)
+            h1(k, ih_work22) = hn(k, ih_work22)
+         end do
+      else if (with_s22) then
+         h1 = hn
          ! tau22 linear in zbar between the faces (docs/theory.md §12)
          do k = 1, npt
             zeta(k) = (hn(k, ih_zbar) - hn(1, ih_zbar))/(hn(npt, ih_zbar) - hn(1, ih_zbar))
@@ -136,6 +153,7 @@ contains
             cs(2, 2) = cs(2, 2) + wl*zeta(k)*hn(k, ih_zbar)
          end do
       else
+         h1 = hn
          call material_update(mat, npt, h1(:, ih_stress:ih_stress + 1), &
                               h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
                               h1(:, ih_spd), hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt)
