@@ -258,7 +258,7 @@ contains
       real(dp), intent(inout) :: pnewdt
 
       real(dp) :: e_mod, nu, r_value, r, e_ps, d12, hill_a, hill_b, c_e, c_nu
-      real(dp), dimension(nblock) :: sig_tr1, sig_tr2, sy_n, h_n, seq2_tr
+      real(dp), dimension(nblock) :: seq2_tr
       ! packed plastic points (index j; idx(j) is the point of the block)
       integer :: idx(nblock), np, j, k
       real(dp), dimension(nblock) :: s_tr, t_tr, ep_n, sy_p, h_p, seq_p, q_s, q_t, seq, &
@@ -301,17 +301,23 @@ contains
 
       ! Elastic predictor; the flow stress comes from the cache statev(isv_flow_stress)
       ! and statev(isv_hardening_slope), which a virgin point
-      ! (statev(isv_flow_stress) <= 0) has not filled yet.
+      ! (statev(isv_flow_stress) <= 0) has not filled yet.  The trial stress
+      ! and the flow stress at the start go straight into the outputs (the
+      ! end state of an elastic point; the plastic points are overwritten at
+      ! the end): a copy loop of its own becomes a memcpy call per column,
+      ! which for a block of 21 points costs more than the copy itself.
       do k = 1, nblock
-         sig_tr1(k) = stress_n(k, 1) + e_ps*dstran(k, 1) + d12*dstran(k, 2)
-         sig_tr2(k) = stress_n(k, 2) + d12*dstran(k, 1) + e_ps*dstran(k, 2)
+         stress(k, 1) = stress_n(k, 1) + e_ps*dstran(k, 1) + d12*dstran(k, 2)
+         stress(k, 2) = stress_n(k, 2) + d12*dstran(k, 1) + e_ps*dstran(k, 2)
          ! sbar_trial^2: its root is needed only where the point yields
-         seq2_tr(k) = hill_a*(sig_tr1(k) + sig_tr2(k))**2 + hill_b*(sig_tr1(k) - sig_tr2(k))**2
-         sy_n(k) = statev_n(k, isv_flow_stress)
-         h_n(k) = statev_n(k, isv_hardening_slope)
+         seq2_tr(k) = hill_a*(stress(k, 1) + stress(k, 2))**2 + hill_b*(stress(k, 1) - stress(k, 2))**2
+         statev(k, isv_flow_stress) = statev_n(k, isv_flow_stress)
+         statev(k, isv_hardening_slope) = statev_n(k, isv_hardening_slope)
       end do
       do k = 1, nblock
-         if (.not. sy_n(k) > 0.0_dp) call flow_stress(statev_n(k, isv_eqps), props, nprops, sy_n(k), h_n(k))
+         if (.not. statev(k, isv_flow_stress) > 0.0_dp) &
+            call flow_stress(statev_n(k, isv_eqps), props, nprops, statev(k, isv_flow_stress), &
+                             statev(k, isv_hardening_slope))
       end do
 
       ! Points whose trial state lies outside the yield surface.  A trial
@@ -322,7 +328,8 @@ contains
       ! goes to the checks below, which fail it.
       np = 0
       do k = 1, nblock
-         if (.not. (seq2_tr(k) <= ((1.0_dp + tol_yield)*sy_n(k))**2 .and. sy_n(k) > 0.0_dp)) then
+         if (.not. (seq2_tr(k) <= ((1.0_dp + tol_yield)*statev(k, isv_flow_stress))**2 .and. &
+                    statev(k, isv_flow_stress) > 0.0_dp)) then
             np = np + 1
             idx(np) = k
          end if
@@ -330,18 +337,18 @@ contains
       ok = .true.
       do j = 1, np
          k = idx(j)
-         s_tr(j) = sig_tr1(k) + sig_tr2(k)
-         t_tr(j) = sig_tr1(k) - sig_tr2(k)
+         s_tr(j) = stress(k, 1) + stress(k, 2)
+         t_tr(j) = stress(k, 1) - stress(k, 2)
          ep_n(j) = statev_n(k, isv_eqps)
          sig_n1(j) = stress_n(k, 1)
          sig_n2(j) = stress_n(k, 2)
          eps22(j) = statev_n(k, isv_eps22)
          spd_p(j) = spd_n(k)
-         sy_p(j) = sy_n(k)
-         h_p(j) = h_n(k)
+         sy_p(j) = statev(k, isv_flow_stress)
+         h_p(j) = statev(k, isv_hardening_slope)
          seq_p(j) = sqrt(seq2_tr(k))
-         ok = ok .and. sy_n(k) > 0.0_dp .and. ieee_is_finite(sig_tr1(k)) .and. &
-              ieee_is_finite(sig_tr2(k))
+         ok = ok .and. statev(k, isv_flow_stress) > 0.0_dp .and. ieee_is_finite(stress(k, 1)) .and. &
+              ieee_is_finite(stress(k, 2))
       end do
       if (ok .and. np > 0) call return_map_block(np, s_tr, t_tr, ep_n, sy_p, h_p, seq_p, props, &
                                                  nprops, q_s, q_t, seq, dp_inc, sy_end, h_end, ok)
@@ -425,14 +432,10 @@ contains
       do k = 1, nblock
          statev(k, isv_eqps) = statev_n(k, isv_eqps)
          statev(k, isv_eps22) = statev_n(k, isv_eps22) &
-                                - c_nu*(sig_tr1(k) - stress_n(k, 1) + sig_tr2(k) - stress_n(k, 2))
-         stress(k, 1) = sig_tr1(k)
-         stress(k, 2) = sig_tr2(k)
-         statev(k, isv_sigma33) = sig_tr2(k)
+                                - c_nu*(stress(k, 1) - stress_n(k, 1) + stress(k, 2) - stress_n(k, 2))
+         statev(k, isv_sigma33) = stress(k, 2)
          statev(k, isv_tangent) = e_ps
-         statev(k, isv_flow_stress) = sy_n(k)
-         statev(k, isv_hardening_slope) = h_n(k)
-         sse(k) = elastic_energy(sig_tr1(k), sig_tr2(k), e_mod, nu)
+         sse(k) = elastic_energy(stress(k, 1), stress(k, 2), e_mod, nu)
          spd(k) = spd_n(k)
       end do
       ! state variables beyond the law's (a caller's larger statev) pass through
