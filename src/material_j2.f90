@@ -55,7 +55,7 @@ module material_j2
 
    public :: n_statev, isv_eqps, isv_eps22, isv_sigma33, isv_tangent, isv_flow_stress, &
              isv_hardening_slope, ip_youngs, ip_poisson, ip_r_value
-   public :: umat, umat_block, hill_equivalent, check_props
+   public :: umat, umat_block, umat_block_to, hill_equivalent, check_props
 
    !> places of the state variables in statev (module header)
    integer, parameter :: isv_eqps = 1, isv_eps22 = 2, isv_sigma33 = 3, isv_tangent = 4, &
@@ -167,17 +167,8 @@ contains
    end subroutine umat
 
    !> UMAT_BLOCK: the stress update of umat for a block of material points
-   !> at once, the block index first (the layout of Abaqus/Explicit's VUMAT).
-   !>
-   !> The points of a block are independent, so every step is a loop over
-   !> the block that the compiler can vectorize (libmvec's pow, log, exp):
-   !> the elastic predictor of all points, then the return mapping of the
-   !> points that yield, packed together (return_map_block), then the end
-   !> states.  Point k gets what umat would give it alone, to the local
-   !> tolerance: the block iterates until its slowest point has converged,
-   !> so a point may take a full step where alone it would have taken the
-   !> Taylor finish (differences of order 1e-12 in the stress, 1e-8 in H'
-   !> and the tangents that carry it).
+   !> at once, the block index first (the layout of Abaqus/Explicit's VUMAT),
+   !> in place: umat_block_to with the start state copied aside (see there).
    !>
    !> nblock  [in]     number of material points, >= 1.
    !> stress  [in,out] (nblock, 2) Kirchhoff stress (sigma11, sigma33) per
@@ -204,21 +195,87 @@ contains
       real(dp), intent(in) :: dstran(nblock, 2)
       real(dp), intent(in) :: props(nprops)
       real(dp), intent(inout) :: pnewdt
+      real(dp) :: stress_n(nblock, 2), statev_n(nblock, nstatv), sse_n(nblock), spd_n(nblock)
 
-      real(dp) :: e_mod, nu, r_value, r, e_ps, d12, hill_a, hill_b
-      real(dp), dimension(nblock) :: sig_tr1, sig_tr2, sy_n, h_n, seq_tr
+      stress_n = stress
+      statev_n = statev
+      sse_n = sse
+      spd_n = spd
+      call umat_block_to(nblock, stress_n, statev_n, sse_n, spd_n, stress, statev, ddsdde, sse, &
+                         spd, dstran, props, nprops, nstatv, pnewdt)
+   end subroutine umat_block
+
+   !> UMAT_BLOCK_TO: the stress update of umat for a block of material
+   !> points at once, the block index first (the layout of Abaqus/Explicit's
+   !> VUMAT), from the start state in stress_n ... spd_n into the end state
+   !> in stress ... spd (distinct arrays): every output is written once and
+   !> the start state is read where it is, so the section needs no copy of
+   !> its converged history into the trial one (umat_block is the in-place
+   !> form).
+   !>
+   !> The points of a block are independent, so every step is a loop over
+   !> the block that the compiler can vectorize (libmvec's pow, log, exp):
+   !> the elastic predictor of all points, then the return mapping of the
+   !> points that yield, packed together (return_map_block), then the end
+   !> states.  Point k gets what umat would give it alone, to the local
+   !> tolerance: the block iterates until its slowest point has converged,
+   !> so a point may take a full step where alone it would have taken the
+   !> Taylor finish (differences of order 1e-12 in the stress, 1e-8 in H'
+   !> and the tangents that carry it).
+   !>
+   !> nblock  [in]     number of material points, >= 1.
+   !> stress_n [in]    (nblock, 2) Kirchhoff stress (sigma11, sigma33) per
+   !>                  point at the start of the increment.
+   !> statev_n [in]    (nblock, nstatv) state variables per point (see umat)
+   !>                  at the start.
+   !> sse_n   [in]     (nblock) elastic strain energy density at the start
+   !>                  (read only if the update fails).
+   !> spd_n   [in]     (nblock) plastic dissipation density at the start.
+   !> stress  [out]    (nblock, 2) the stress at the end of the increment.
+   !> statev  [out]    (nblock, nstatv) the state variables at the end.
+   !> ddsdde  [out]    (nblock, 2, 2) consistent tangent per point.
+   !> sse     [out]    (nblock) elastic strain energy density at the end.
+   !> spd     [out]    (nblock) plastic dissipation density at the end.
+   !> dstran  [in]     (nblock, 2) log strain increment (deps11, deps33).
+   !> props   [in]     material constants, shared by the block (see umat).
+   !> nprops  [in]     size of props.
+   !> nstatv  [in]     second extent of statev.
+   !> pnewdt  [in,out] as for umat; if the return mapping fails at any point,
+   !>                  pnewdt = min(pnewdt, 0.5) and stress, statev, sse, spd
+   !>                  of the whole block are the start state (ddsdde = D).
+   pure subroutine umat_block_to(nblock, stress_n, statev_n, sse_n, spd_n, stress, statev, &
+                                 ddsdde, sse, spd, dstran, props, nprops, nstatv, pnewdt)
+      integer, intent(in) :: nblock, nprops, nstatv
+      real(dp), intent(in) :: stress_n(nblock, 2), statev_n(nblock, nstatv), sse_n(nblock), &
+                              spd_n(nblock)
+      real(dp), intent(out) :: stress(nblock, 2)
+      real(dp), intent(out) :: statev(nblock, nstatv)
+      real(dp), intent(out) :: ddsdde(nblock, 2, 2)
+      real(dp), intent(out) :: sse(nblock)
+      real(dp), intent(out) :: spd(nblock)
+      real(dp), intent(in) :: dstran(nblock, 2)
+      real(dp), intent(in) :: props(nprops)
+      real(dp), intent(inout) :: pnewdt
+
+      real(dp) :: e_mod, nu, r_value, r, e_ps, d12, hill_a, hill_b, c_e, c_nu
+      real(dp), dimension(nblock) :: seq2_tr
       ! packed plastic points (index j; idx(j) is the point of the block)
       integer :: idx(nblock), np, j, k
       real(dp), dimension(nblock) :: s_tr, t_tr, ep_n, sy_p, h_p, seq_p, q_s, q_t, seq, &
                                      dp_inc, sy_end, h_end, sig1, sig2, c11, c12, c22, ct11, &
                                      eps22, sse_p, spd_p, sig_n1, sig_n2
-      real(dp) :: f1, f2, a11, a12, a22, det, x11, x12, x22, xn1, xn2, den, dsig1, dsig2
+      real(dp) :: f1, f2, a11, a12, a22, rdet, x11, x12, x22, xn1, xn2, rden, dsig1, dsig2, rs, gs
       logical :: ok
 
       ! sizes only (the values are check_props's job, done once at set-up)
       if (nstatv < n_statev .or. .not. law_sizes_ok(props, nprops)) then
          ddsdde = 0.0_dp
          pnewdt = min(pnewdt, 0.0_dp)
+         ! a failed update returns the start state
+         stress = stress_n
+         statev = statev_n
+         sse = sse_n
+         spd = spd_n
          return
       end if
 
@@ -231,6 +288,9 @@ contains
       ! sbar^2 = (hill_a (s11 + s33)^2 + hill_b (s11 - s33)^2), see hill_equivalent
       hill_a = 1.0_dp/(2.0_dp*(1.0_dp + r_value))
       hill_b = (1.0_dp + 2.0_dp*r_value)*hill_a
+      ! the compliance C = D^-1 = [[1, -nu], [-nu, 1]]/E
+      c_e = 1.0_dp/e_mod
+      c_nu = nu/e_mod
 
       ! D at every point: the tangent of an elastic point, and of the whole
       ! block if it fails (the plastic points are overwritten at the end)
@@ -241,24 +301,35 @@ contains
 
       ! Elastic predictor; the flow stress comes from the cache statev(isv_flow_stress)
       ! and statev(isv_hardening_slope), which a virgin point
-      ! (statev(isv_flow_stress) <= 0) has not filled yet.
+      ! (statev(isv_flow_stress) <= 0) has not filled yet.  The trial stress
+      ! and the flow stress at the start go straight into the outputs (the
+      ! end state of an elastic point; the plastic points are overwritten at
+      ! the end): a copy loop of its own becomes a memcpy call per column,
+      ! which for a block of 21 points costs more than the copy itself.
       do k = 1, nblock
-         sig_tr1(k) = stress(k, 1) + e_ps*dstran(k, 1) + d12*dstran(k, 2)
-         sig_tr2(k) = stress(k, 2) + d12*dstran(k, 1) + e_ps*dstran(k, 2)
-         seq_tr(k) = sqrt(hill_a*(sig_tr1(k) + sig_tr2(k))**2 + hill_b*(sig_tr1(k) - sig_tr2(k))**2)
-         sy_n(k) = statev(k, isv_flow_stress)
-         h_n(k) = statev(k, isv_hardening_slope)
+         stress(k, 1) = stress_n(k, 1) + e_ps*dstran(k, 1) + d12*dstran(k, 2)
+         stress(k, 2) = stress_n(k, 2) + d12*dstran(k, 1) + e_ps*dstran(k, 2)
+         ! sbar_trial^2: its root is needed only where the point yields
+         seq2_tr(k) = hill_a*(stress(k, 1) + stress(k, 2))**2 + hill_b*(stress(k, 1) - stress(k, 2))**2
+         statev(k, isv_flow_stress) = statev_n(k, isv_flow_stress)
+         statev(k, isv_hardening_slope) = statev_n(k, isv_hardening_slope)
       end do
       do k = 1, nblock
-         if (.not. sy_n(k) > 0.0_dp) call flow_stress(statev(k, isv_eqps), props, nprops, sy_n(k), h_n(k))
+         if (.not. statev(k, isv_flow_stress) > 0.0_dp) &
+            call flow_stress(statev_n(k, isv_eqps), props, nprops, statev(k, isv_flow_stress), &
+                             statev(k, isv_hardening_slope))
       end do
 
       ! Points whose trial state lies outside the yield surface.  A trial
       ! state with sbar_trial <= (1 + tol_yield) sigma_y is elastic (also
       ! elastic unloading); a NaN is not, so that the checks below fail it.
+      ! Compared squared (sbar_trial^2 <= ((1 + tol_yield) sigma_y)^2 with
+      ! sigma_y > 0), without a root per point; a point with sigma_y <= 0
+      ! goes to the checks below, which fail it.
       np = 0
       do k = 1, nblock
-         if (.not. seq_tr(k) <= (1.0_dp + tol_yield)*sy_n(k)) then
+         if (.not. (seq2_tr(k) <= ((1.0_dp + tol_yield)*statev(k, isv_flow_stress))**2 .and. &
+                    statev(k, isv_flow_stress) > 0.0_dp)) then
             np = np + 1
             idx(np) = k
          end if
@@ -266,18 +337,18 @@ contains
       ok = .true.
       do j = 1, np
          k = idx(j)
-         s_tr(j) = sig_tr1(k) + sig_tr2(k)
-         t_tr(j) = sig_tr1(k) - sig_tr2(k)
-         ep_n(j) = statev(k, isv_eqps)
-         sig_n1(j) = stress(k, 1)
-         sig_n2(j) = stress(k, 2)
-         eps22(j) = statev(k, isv_eps22)
-         spd_p(j) = spd(k)
-         sy_p(j) = sy_n(k)
-         h_p(j) = h_n(k)
-         seq_p(j) = seq_tr(k)
-         ok = ok .and. sy_n(k) > 0.0_dp .and. ieee_is_finite(sig_tr1(k)) .and. &
-              ieee_is_finite(sig_tr2(k))
+         s_tr(j) = stress(k, 1) + stress(k, 2)
+         t_tr(j) = stress(k, 1) - stress(k, 2)
+         ep_n(j) = statev_n(k, isv_eqps)
+         sig_n1(j) = stress_n(k, 1)
+         sig_n2(j) = stress_n(k, 2)
+         eps22(j) = statev_n(k, isv_eps22)
+         spd_p(j) = spd_n(k)
+         sy_p(j) = statev(k, isv_flow_stress)
+         h_p(j) = statev(k, isv_hardening_slope)
+         seq_p(j) = sqrt(seq2_tr(k))
+         ok = ok .and. statev(k, isv_flow_stress) > 0.0_dp .and. ieee_is_finite(stress(k, 1)) .and. &
+              ieee_is_finite(stress(k, 2))
       end do
       if (ok .and. np > 0) call return_map_block(np, s_tr, t_tr, ep_n, sy_p, h_p, seq_p, props, &
                                                  nprops, q_s, q_t, seq, dp_inc, sy_end, h_end, ok)
@@ -291,12 +362,23 @@ contains
       end if
       if (.not. ok) then
          pnewdt = min(pnewdt, pnewdt_cut)
+         ! a failed update returns the start state
+         stress = stress_n
+         statev = statev_n
+         sse = sse_n
+         spd = spd_n
          return
       end if
 
       ! End states of the plastic points, packed.
       do j = 1, np
-         ! flow direction n = P sigma / sbar (hill_normal)
+         ! flow direction n = P sigma / sbar (hill_normal).  The tangent
+         ! below takes 1/sbar, 1/det and 1/den once each (it had nine
+         ! divisions).  n itself keeps its two divisions: multiplying by
+         ! 1/sbar there moves eps22, hence zbar, by an ulp, which is enough to
+         ! flip cc_fig5a's localization station between mirror images
+         ! (s* = +-6.83 h, a round-off tie of the symmetric lock)
+         rs = 1.0_dp/seq(j)
          f1 = (sig1(j) - r*sig2(j))/seq(j)
          f2 = (sig2(j) - r*sig1(j))/seq(j)
          ! Consistent (algorithmic) tangent.  Linearising the converged
@@ -309,19 +391,20 @@ contains
          ! to the continuum tangent (A.1) when dp -> 0.  A = Xi^-1 is
          ! symmetric positive definite (C is, and P - n n^T is the Hessian
          ! of the convex sbar), so the explicit 2x2 inverse is safe.
-         a11 = 1.0_dp/e_mod + dp_inc(j)*(1.0_dp - f1**2)/seq(j)
-         a22 = 1.0_dp/e_mod + dp_inc(j)*(1.0_dp - f2**2)/seq(j)
-         a12 = -nu/e_mod + dp_inc(j)*(-r - f1*f2)/seq(j)
-         det = a11*a22 - a12*a12
-         x11 = a22/det
-         x22 = a11/det
-         x12 = -a12/det
+         gs = dp_inc(j)*rs
+         a11 = c_e + gs*(1.0_dp - f1**2)
+         a22 = c_e + gs*(1.0_dp - f2**2)
+         a12 = -c_nu + gs*(-r - f1*f2)
+         rdet = 1.0_dp/(a11*a22 - a12*a12)
+         x11 = a22*rdet
+         x22 = a11*rdet
+         x12 = -a12*rdet
          xn1 = x11*f1 + x12*f2
          xn2 = x12*f1 + x22*f2
-         den = f1*xn1 + f2*xn2 + h_end(j)
-         c11(j) = x11 - xn1*xn1/den
-         c12(j) = x12 - xn1*xn2/den
-         c22(j) = x22 - xn2*xn2/den
+         rden = 1.0_dp/(f1*xn1 + f2*xn2 + h_end(j))
+         c11(j) = x11 - xn1*xn1*rden
+         c12(j) = x12 - xn1*xn2*rden
+         c22(j) = x22 - xn2*xn2*rden
          ! Continuum tangent (A.1) with alpha = 1, (1,1) entry (eps33 fixed):
          ! D - (D n)(D n)^T / (n^T D n + H').
          xn1 = e_ps*f1 + d12*f2
@@ -332,7 +415,7 @@ contains
          ! d eps22 = -(nu/E)(d s11 + d s33) - d eps11p - d eps33p.
          dsig1 = sig1(j) - sig_n1(j)
          dsig2 = sig2(j) - sig_n2(j)
-         eps22(j) = eps22(j) - nu/e_mod*(dsig1 + dsig2) - dp_inc(j)*(f1 + f2)
+         eps22(j) = eps22(j) - c_nu*(dsig1 + dsig2) - dp_inc(j)*(f1 + f2)
          sse_p(j) = elastic_energy(sig1(j), sig2(j), e_mod, nu)
       end do
       ! Dissipation: on the yield surface sigma : d eps_p = sbar d ep =
@@ -347,16 +430,16 @@ contains
       ! Thickness strain: plane stress sigma22 = 0 gives
       ! d eps22 = -(nu/E)(d s11 + d s33) (docs/theory.md §4, no plastic part).
       do k = 1, nblock
-         statev(k, isv_eps22) = statev(k, isv_eps22) &
-                                - nu/e_mod*(sig_tr1(k) - stress(k, 1) + sig_tr2(k) - stress(k, 2))
-         stress(k, 1) = sig_tr1(k)
-         stress(k, 2) = sig_tr2(k)
-         statev(k, isv_sigma33) = sig_tr2(k)
+         statev(k, isv_eqps) = statev_n(k, isv_eqps)
+         statev(k, isv_eps22) = statev_n(k, isv_eps22) &
+                                - c_nu*(stress(k, 1) - stress_n(k, 1) + stress(k, 2) - stress_n(k, 2))
+         statev(k, isv_sigma33) = stress(k, 2)
          statev(k, isv_tangent) = e_ps
-         statev(k, isv_flow_stress) = sy_n(k)
-         statev(k, isv_hardening_slope) = h_n(k)
-         sse(k) = elastic_energy(sig_tr1(k), sig_tr2(k), e_mod, nu)
+         sse(k) = elastic_energy(stress(k, 1), stress(k, 2), e_mod, nu)
+         spd(k) = spd_n(k)
       end do
+      ! state variables beyond the law's (a caller's larger statev) pass through
+      if (nstatv > n_statev) statev(:, n_statev + 1:) = statev_n(:, n_statev + 1:)
       do j = 1, np
          k = idx(j)
          stress(k, 1) = sig1(j)
@@ -374,7 +457,7 @@ contains
          ddsdde(k, 1, 2) = c12(j)
          ddsdde(k, 2, 2) = c22(j)
       end do
-   end subroutine umat_block
+   end subroutine umat_block_to
    !> Hill 1948 equivalent stress for normal anisotropy with zero thickness
    !> stress, paper appendix (A.3) with sigma<22> = 0:
    !>   sbar^2 = s11^2 + s33^2 - (2R/(1+R)) s11 s33.

@@ -74,7 +74,7 @@ contains
       real(dp), intent(out) :: q_s(n), q_t(n), seq(n), dp_inc(n), sy_end(n), h_end(n)
       logical, intent(out) :: ok
 
-      real(dp) :: e_mod, nu, r, k_s, k_t, n_far, n_out, n_bad
+      real(dp) :: e_mod, nu, r, k_s, k_t, n_far, n_out, n_bad, ds, dt, rq
       real(dp), dimension(n) :: a_s, a_t, k_eff, gam, gam_lo, gam_hi, g, ep
       integer :: iter, j
 
@@ -111,8 +111,12 @@ contains
             exit
          end if
          do j = 1, n
-            q_s(j) = 1.0_dp/(1.0_dp + gam(j)*k_s)
-            q_t(j) = 1.0_dp/(1.0_dp + gam(j)*k_t)
+            ! q_s and q_t from one division: 1/((1 + gamma k_s)(1 + gamma k_t))
+            ds = 1.0_dp + gam(j)*k_s
+            dt = 1.0_dp + gam(j)*k_t
+            rq = 1.0_dp/(ds*dt)
+            q_s(j) = dt*rq
+            q_t(j) = ds*rq
             seq(j) = sqrt(0.5_dp*(a_s(j)*q_s(j)**2 + a_t(j)*q_t(j)**2))
          end do
          if (n_out < 0.5_dp) then
@@ -169,7 +173,7 @@ contains
       real(dp), intent(inout) :: gam(n), gam_lo(n), gam_hi(n)
       real(dp), intent(out) :: n_far, n_out
 
-      real(dp) :: dseq, dg, step, gj, lo, hi, far, near
+      real(dp) :: dseq, dg, step, gj, lo, hi, far, near, ek
       integer :: j
       logical :: inside
 
@@ -185,17 +189,20 @@ contains
          hi = merge(hi, gj, g(j) > 0.0_dp)
          gam_lo(j) = lo
          gam_hi(j) = hi
-         ! g'(gamma) = sbar' - H' (sbar + gamma sbar'),  sbar' < 0.
-         dseq = -0.5_dp*(a_s(j)*k_s*q_s(j)**3 + a_t(j)*k_t*q_t(j)**3)/seq(j)
-         dg = dseq - h_end(j)*(seq(j) + gj*dseq)
+         ! g'(gamma) = sbar' - H' (sbar + gamma sbar'),  sbar' < 0;
+         ! dseq = sbar sbar' (no division by sbar).
+         dseq = -0.5_dp*(a_s(j)*k_s*q_s(j)**3 + a_t(j)*k_t*q_t(j)**3)
          ! Newton on F = g (1 + gamma k_eff), same root and sign as g:
          ! sbar ~ sbar_tr/(1 + gamma k_eff) makes g strongly convex (plain
          ! Newton from gamma = 0 only halves the error per iteration for
          ! large steps), while F is nearly linear (exactly so for a
          ! perfectly plastic material when k_s = k_t).
-         ! F'/(1 + gamma k_eff) = g' + g k_eff/(1 + gamma k_eff).
-         dg = dg + g(j)*k_eff(j)/(1.0_dp + gj*k_eff(j))
-         step = gj - g(j)/merge(dg, -1.0_dp, dg < 0.0_dp)
+         ! F'/(1 + gamma k_eff) = g' + g k_eff/(1 + gamma k_eff); dg is that
+         ! times sbar (1 + gamma k_eff) > 0, which keeps its sign, so the
+         ! step g/(F'/(1 + gamma k_eff)) = g sbar ek/dg takes one division.
+         ek = 1.0_dp + gj*k_eff(j)
+         dg = (dseq - h_end(j)*(seq(j)**2 + gj*dseq))*ek + g(j)*k_eff(j)*seq(j)
+         step = gj - g(j)*seq(j)*ek/merge(dg, -1.0_dp, dg < 0.0_dp)
          ! Bisection if the Newton step leaves the bracket (kinks of a
          ! tabulated curve).  (merge, not if: one vector loop.)
          inside = dg < 0.0_dp .and. (step > lo) .and. (step < hi)

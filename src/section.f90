@@ -34,8 +34,8 @@
 !> paper's plane-stress update unchanged.
 module section
    use kinds, only: dp
-   use material_j2, only: n_statev, isv_eqps, isv_eps22, isv_tangent
-   use material, only: material_type, material_update
+   use material_j2, only: n_statev, isv_eqps, isv_eps22, isv_tangent, umat_block_to
+   use material, only: material_type, material_update, material_builtin
    implicit none
    private
    public :: n_hist, ih_strain, ih_zbar, ih_stress, ih_sse, ih_spd, ih_statev, ih_eqps, &
@@ -112,9 +112,26 @@ contains
          dstran(k, 1) = log_lam(k) - hn(k, ih_strain)
          dstran(k, 2) = 0.0_dp
       end do
-      h1 = hn
       with_s22 = any(abs(face_stress) > 0.0_dp) .or. any(abs(hn(:, ih_stress22)) > 0.0_dp)
-      if (with_s22) then
+      if (.not. with_s22 .and. mat%kind == material_builtin) then
+         ! the built-in law reads the converged history where it is and
+         ! writes every column of the trial one once (umat_block_to): no copy
+         ! of hn into h1 first
+         call umat_block_to(npt, hn(:, ih_stress:ih_stress + 1), hn(:, ih_statev:ih_statev + n_statev - 1), &
+                            hn(:, ih_sse), hn(:, ih_spd), h1(:, ih_stress:ih_stress + 1), &
+                            h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
+                            h1(:, ih_spd), dstran, mat%props, size(mat%props), n_statev, pnewdt)
+         if (pnewdt < 1.0_dp) then
+            h1 = hn
+            return
+         end if
+         do k = 1, npt
+            h1(k, ih_zbar) = hn(k, ih_zbar)
+            h1(k, ih_stress22) = hn(k, ih_stress22)
+            h1(k, ih_work22) = hn(k, ih_work22)
+         end do
+      else if (with_s22) then
+         h1 = hn
          ! tau22 linear in zbar between the faces (docs/theory.md §12)
          do k = 1, npt
             zeta(k) = (hn(k, ih_zbar) - hn(1, ih_zbar))/(hn(npt, ih_zbar) - hn(1, ih_zbar))
@@ -136,6 +153,7 @@ contains
             cs(2, 2) = cs(2, 2) + wl*zeta(k)*hn(k, ih_zbar)
          end do
       else
+         h1 = hn
          call material_update(mat, npt, h1(:, ih_stress:ih_stress + 1), &
                               h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
                               h1(:, ih_spd), hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt)
@@ -172,15 +190,21 @@ contains
    pure function section_localization(wz, hist, h, e) result(indicator)
       real(dp), intent(in) :: wz(:), hist(:, :), h, e
       real(dp) :: indicator
-      real(dp) :: c11, c12, c22, lam, zb, wl2, t, tr, dt
+      real(dp) :: c11, c12, c22, zb, wl2, t, tr, dt, rt
+      real(dp) :: wl(size(wz))
       integer :: k, npt
       npt = size(wz)
       t = hist(npt, ih_zbar) - hist(1, ih_zbar)
+      rt = sqrt(12.0_dp)/t
+      ! w (D - tau)/Lambda^2 with 1/Lambda^2 = exp(-2 ln Lambda): no
+      ! division, and a loop without a sum, which vectorizes (libmvec's exp)
+      do k = 1, npt
+         wl(k) = wz(k)*(hist(k, ih_tangent) - hist(k, ih_stress))*exp(-2.0_dp*hist(k, ih_strain))
+      end do
       c11 = 0.0_dp; c12 = 0.0_dp; c22 = 0.0_dp
       do k = 1, npt
-         lam = exp(hist(k, ih_strain))
-         zb = sqrt(12.0_dp)*hist(k, ih_zbar)/t
-         wl2 = wz(k)*(hist(k, ih_tangent) - hist(k, ih_stress))/(lam*lam)
+         zb = rt*hist(k, ih_zbar)
+         wl2 = wl(k)
          c11 = c11 + wl2
          c12 = c12 + wl2*zb
          c22 = c22 + wl2*zb*zb
@@ -201,18 +225,19 @@ contains
       real(dp), intent(in) :: z(:)
       real(dp), intent(inout) :: hist(:, :)
       integer :: k, mid
-      real(dp) :: g0, g1
+      real(dp) :: g(size(z))
       mid = (size(z) + 1)/2
+      ! one exp per station (each enters two trapezoids); a loop of its own
+      ! so that it vectorizes (libmvec)
+      do k = 1, size(z)
+         g(k) = exp(hist(k, ih_eps22))
+      end do
       hist(mid, ih_zbar) = 0.0_dp
       do k = mid + 1, size(z)
-         g0 = exp(hist(k - 1, ih_eps22))
-         g1 = exp(hist(k, ih_eps22))
-         hist(k, ih_zbar) = hist(k - 1, ih_zbar) + 0.5_dp*(g0 + g1)*(z(k) - z(k - 1))
+         hist(k, ih_zbar) = hist(k - 1, ih_zbar) + 0.5_dp*(g(k - 1) + g(k))*(z(k) - z(k - 1))
       end do
       do k = mid - 1, 1, -1
-         g0 = exp(hist(k + 1, ih_eps22))
-         g1 = exp(hist(k, ih_eps22))
-         hist(k, ih_zbar) = hist(k + 1, ih_zbar) + 0.5_dp*(g0 + g1)*(z(k) - z(k + 1))
+         hist(k, ih_zbar) = hist(k + 1, ih_zbar) + 0.5_dp*(g(k + 1) + g(k))*(z(k) - z(k + 1))
       end do
    end subroutine section_update_zbar
 end module section
