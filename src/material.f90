@@ -189,7 +189,7 @@ contains
       real(dp), parameter :: identity(3, 3) = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, &
                                                        0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
       character(len=80), parameter :: cmname = 'UMAT'
-      real(dp) :: s(2), sv(n_statev), dd(2, 2), e, p, scd, rpl, ddsddt(2), drplde(2), drpldt
+      real(dp) :: s(2), sv(n_statev), dd(2, 2), e, p, scd, rpl, ddsddt(2), drplde(2), drpldt, de(2)
       integer :: k
 
       if (mat%kind == material_builtin) then
@@ -208,7 +208,9 @@ contains
          e = sse(k)
          p = spd(k)
          scd = 0.0_dp
-         call umat(s, sv, dd, e, p, scd, rpl, ddsddt, drplde, drpldt, [stran11(k), 0.0_dp], dstran(k, :), &
+         ! a row of dstran is strided: the UMAT's explicit-shape DSTRAN gets a copy
+         de = dstran(k, :)
+         call umat(s, sv, dd, e, p, scd, rpl, ddsddt, drplde, drpldt, [stran11(k), 0.0_dp], de, &
                    [0.0_dp, 0.0_dp], 1.0_dp, 0.0_dp, 0.0_dp, [0.0_dp], [0.0_dp], cmname, 2, 0, 2, &
                    n_statev, mat%props, size(mat%props), [0.0_dp, zbar(k), 0.0_dp], identity, &
                    pnewdt, 0.0_dp, identity, identity, 0, 0, 1, k, 1, 0)
