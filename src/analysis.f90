@@ -22,7 +22,7 @@ module analysis
    use step_control, only: judge_force_change, next_increment, cutback_factor, extrapolation_error, &
                            judge_error, displacement_error
    use tearing, only: check_localization, check_fold, strain_limit_indicator, check_load_maximum, &
-                      tear_at_snap_back
+                      tear_at_snap_back, element_length_at
    use energy, only: energy_totals, add_increment_work
    use output, only: output_files, write_row, write_strains, write_snapshot, write_progress
    use os, only: stop_requested, signal_name
@@ -265,6 +265,7 @@ contains
             rec%tear_phase = rec%loc_phase
             rec%tear_load = rec%load_cr
             rec%tear_s = rec%s_star
+            rec%tear_element = element_length_at(m, rec%s_star)
          end if
          tool_work = 0.0_dp
          if (phase == 'lock') tool_work = 0.5_dp*dt*(rec%last_conjugate + punch)

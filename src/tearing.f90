@@ -18,7 +18,7 @@ module tearing
    public :: check_localization, check_fold, strain_limit_indicator, first_crossing
    public :: check_load_maximum, tear_at_snap_back, track_load_maximum, neck_confirmed, &
              load_at_maximum, parabola_vertex
-   public :: tear_force_drop, neck_strain_rate, tear_confirm_pull, set_torn
+   public :: tear_force_drop, neck_strain_rate, tear_confirm_pull, set_torn, element_length_at
 
    !> A maximum of the restraining force is a neck once the force has fallen
    !> tear_force_drop (relative) below it and either the fastest-stretching
@@ -137,6 +137,23 @@ contains
                     first_near_max(growth))
       torn = .true.
    end subroutine tear_at_snap_back
+
+   !> ELEMENT_LENGTH_AT: the reference length of the element that holds the
+   !> reference position s (the first of two that share a node).
+   !>  m  [in] model
+   !>  s  [in] reference position, mm, within [x(1), x(n_nodes)]
+   pure function element_length_at(m, s) result(le)
+      type(model_type), intent(in) :: m
+      real(dp), intent(in) :: s
+      real(dp) :: le
+      integer :: e
+      e = 1
+      do while (e < m%n_el)
+         if (s <= m%x(e + 1)) exit
+         e = e + 1
+      end do
+      le = m%x(e + 1) - m%x(e)
+   end function element_length_at
 
    !> SET_TORN: record the tearing point of the pull phase.
    !>  m     [in]     model
