@@ -320,10 +320,13 @@ bench_deck() {
 }
 
 # points_per_assembly -- material points of one assembly of the run whose
-# stdout is $echo_file: thickness_points x 4 x n_elements (or '-')
+# stdout is $echo_file and summary $summary: thickness_points x 4 x the
+# model's elements (summary key elements: with a refined zone more than the
+# deck's n_elements), or '-'
 points_per_assembly() {
     local nel npt
-    nel=$(echoed "$echo_file" N_ELEMENTS)
+    nel=$(value "$summary" elements)
+    [[ $nel =~ ^[0-9]+$ ]] || nel=$(echoed "$echo_file" N_ELEMENTS)
     npt=$(echoed "$echo_file" THICKNESS_POINTS)
     if [[ $nel =~ ^[0-9]+$ && $npt =~ ^[0-9]+$ ]]; then
         echo $((npt * 4 * nel))

@@ -87,10 +87,14 @@ mesh_study() {
         h=$(thickness "$deck")
         for n in $counts; do
             inc=$(awk -v h="$h" -v n0="$n0" -v n="$n" 'BEGIN { printf "%.6g", 0.1 * h * n0 / n }')
-            zone=$(awk -v n0="$n0" -v n="$n" 'match($0, /refine_element *= *[0-9.eE+-]+/) {
-                v = substr($0, RSTART, RLENGTH); sub(/.*= */, "", v); printf "%.6g", v * n0 / n; exit }' "$deck")
+            # the deck's refine_element (any case, not in a comment; a d
+            # exponent read as e)
+            zone=$(awk -v n0="$n0" -v n="$n" '{ sub(/!.*/, ""); l = tolower($0) }
+                match(l, /refine_element *= *[0-9.ed+-]+/) {
+                v = substr(l, RSTART, RLENGTH); sub(/.*= */, "", v); gsub(/d/, "e", v)
+                printf "%.6g", v * n0 / n; exit }' "$deck")
             sed -e "s/^ *n_elements *=.*/   n_elements = $n/" \
-                -e "s/refine_element *= *[0-9.eE+-]*/refine_element = ${zone:-0}/" \
+                -e "s/^\([^!]*\)refine_element *= *[0-9.eEdD+-]*/\1refine_element = ${zone:-0}/I" \
                 -e "s/^&loading/\&loading\n   max_increment = $inc/" "$deck" > "$outdir/${name}_$n.nml" ||
                 die "cannot write '$outdir/${name}_$n.nml'"
             pool_decks+=("$outdir/${name}_$n.nml")

@@ -439,7 +439,9 @@ contains
       call check_real(errs, at(p, 'sheet', 'refine_from'), d%refine_from)
       call check_real(errs, at(p, 'sheet', 'refine_to'), d%refine_to)
       if (.not. (d%refine_element > 0.0_dp)) then
-         if (ieee_is_finite(d%refine_from) .and. ieee_is_finite(d%refine_to)) then
+         ! (a negative or NaN refine_element is reported above)
+         if (ieee_is_finite(d%refine_from) .and. ieee_is_finite(d%refine_to) &
+             .and. .not. (abs(d%refine_element) > 0.0_dp)) then
             if (abs(d%refine_from) > 0.0_dp .or. abs(d%refine_to) > 0.0_dp) call warn(at(p, 'sheet', 'refine_from')// &
                ': the zone is ignored with refine_element = 0 (no refined zone)')
          end if
@@ -452,10 +454,18 @@ contains
       n_before = errs%count
       half = 0.5_dp*d%length/d%thickness
       coarse = 2.0_dp*half/real(d%n_elements, dp)
-      call check_real(errs, at(p, 'sheet', 'refine_from'), d%refine_from, lo=-half, hi=half, hi_open=.true.)
-      call check_real(errs, at(p, 'sheet', 'refine_to'), d%refine_to, lo=d%refine_from, hi=half, lo_open=.true.)
+      ! the ends of the sheet with a relative tolerance: L/h given in the
+      ! deck's digits need not be L/h computed from the two lengths
+      call check_real(errs, at(p, 'sheet', 'refine_from'), d%refine_from, lo=-half*(1.0_dp + 1.0e-9_dp), &
+                      hi=half, hi_open=.true.)
+      call check_real(errs, at(p, 'sheet', 'refine_to'), d%refine_to, lo=d%refine_from, &
+                      hi=half*(1.0_dp + 1.0e-9_dp), lo_open=.true.)
       call check_real(errs, at(p, 'sheet', 'refine_element'), d%refine_element, &
                       lo=1.0e-3_dp, hi=coarse, hi_open=.true.)
+      if (errs%count == n_before .and. d%refine_to - d%refine_from < d%refine_element) &
+         call fail(errs, at(p, 'sheet', 'refine_to'), 'must be at least refine_from + refine_element = '// &
+                   num(d%refine_from + d%refine_element)//' (a zone of one element or more; got '// &
+                   num(d%refine_to)//')')
       if (abs(d%mesh_beta - 1.0_dp) > 0.0_dp) call fail(errs, at(p, 'sheet', 'mesh_beta'), &
          'must be 1 with a refined zone (refine_element > 0): the zone replaces the grading')
       if (errs%count > n_before) return

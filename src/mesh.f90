@@ -41,32 +41,48 @@ contains
 
    !> ZONE_COUNTS: the numbers of elements left of, in and right of a
    !> refined zone [s0, s1] of [-L, L] (docs/theory.md §2): outside it the
-   !> uniform mesh's element length 2L/n_el, rounded to whole elements (at
-   !> least one on a side the zone does not reach), inside it `size`,
-   !> rounded likewise.  The zone serves the neck, whose width is of order
+   !> uniform mesh's element length 2L/n_el, rounded to whole elements; a
+   !> gap of less than half a coarse element to an end of the sheet gets
+   !> none, and the zone then reaches that end (so that no sliver element
+   !> remains, e.g. from s1 = L given in units of h and rounded in mm);
+   !> inside the zone the length zone_h, rounded to whole elements over
+   !> the zone so extended (at least one).  The zone serves the neck, whose width is of order
    !> h/sqrt(12) with the strain-gradient term (§12.7): the restraining
    !> force's maximum converges on elements of 0.1h there, while the rest of
    !> the sheet converges on the uniform 0.6h (docs/validation.md).
    !>  n_el    [in]  elements of the uniform mesh (>= 2)
    !>  half    [in]  half length L
    !>  s0, s1  [in]  the zone, -L <= s0 < s1 <= L (reference positions)
-   !>  size    [in]  element length in the zone, > 0
+   !>  zone_h  [in]  element length in the zone, > 0
    !>  counts  [out] elements left of, in and right of the zone
-   pure subroutine zone_counts(n_el, half, s0, s1, size, counts)
+   pure subroutine zone_counts(n_el, half, s0, s1, zone_h, counts)
       integer, intent(in) :: n_el
-      real(dp), intent(in) :: half, s0, s1, size
+      real(dp), intent(in) :: half, s0, s1, zone_h
       integer, intent(out) :: counts(3)
-      real(dp) :: coarse
+      real(dp) :: coarse, ends(2)
       coarse = 2.0_dp*half/real(n_el, dp)
-      counts(1) = 0
-      if (s0 > -half) counts(1) = max(1, nint((s0 + half)/coarse))
-      counts(2) = max(1, nint((s1 - s0)/size))
-      counts(3) = 0
-      if (s1 < half) counts(3) = max(1, nint((half - s1)/coarse))
+      counts(1) = max(0, nint((s0 + half)/coarse))
+      counts(3) = max(0, nint((half - s1)/coarse))
+      call zone_ends(counts, half, s0, s1, ends)
+      counts(2) = max(1, nint((ends(2) - ends(1))/zone_h))
    end subroutine zone_counts
 
+   !> ZONE_ENDS: the ends of the refined zone as meshed: s0 and s1, or the
+   !> sheet's end on a side without coarse elements (zone_counts).
+   !>  counts  [in]  elements left of, in and right of the zone
+   !>  half    [in]  half length L
+   !>  s0, s1  [in]  the zone as given
+   !>  ends    [out] the zone as meshed
+   pure subroutine zone_ends(counts, half, s0, s1, ends)
+      integer, intent(in) :: counts(3)
+      real(dp), intent(in) :: half, s0, s1
+      real(dp), intent(out) :: ends(2)
+      ends = [merge(-half, s0, counts(1) == 0), merge(half, s1, counts(3) == 0)]
+   end subroutine zone_ends
+
    !> ZONE_NODES: node positions of a mesh with a refined zone: uniform on
-   !> [-L, s0], [s0, s1] and [s1, L] with the element counts of zone_counts.
+   !> [-L, s0], [s0, s1] and [s1, L] with the element counts of zone_counts
+   !> (the zone reaching an end where a count is 0).
    !>  counts  [in]  elements left of, in and right of the zone
    !>  half    [in]  half length L
    !>  s0, s1  [in]  the zone
@@ -78,7 +94,9 @@ contains
       real(dp), intent(out) :: x(sum(counts) + 1)
       real(dp) :: ends(4)
       integer :: part, i, k
-      ends = [-half, s0, s1, half]
+      ends(1) = -half
+      call zone_ends(counts, half, s0, s1, ends(2:3))
+      ends(4) = half
       x(1) = -half
       k = 1
       do part = 1, 3

@@ -184,6 +184,8 @@ contains
       call add(text, 'newton_iterations = '//itoa(rec%newton_iterations))
       call add(text, 'cutbacks = '//itoa(rec%cutbacks))
       call add(text, 'assemblies = '//itoa(rec%assemblies))
+      ! the model's count: with a refined zone more than the deck's n_elements
+      call add(text, 'elements = '//itoa(m%n_el))
       call put(text, 'cpu_seconds', cpu, .true.)
       call write_text_file(path, text, ios, iomsg)
    end subroutine write_summary

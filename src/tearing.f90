@@ -173,9 +173,10 @@ contains
       e = (k - 1)/n_gauss + 1
       rec%tear_element = m%x(e + 1) - m%x(e)
       ! on coarser elements the neck (width of order h/sqrt(12), §12.7) is
-      ! not resolved and the force's maximum comes late: 20-45% on the
-      ! continuum-check decks at 0.625h (docs/validation.md)
-      if (rec%tear_element > 0.1_dp*m%thickness) then
+      ! not resolved and the force's maximum comes late: 19-52% on the
+      ! continuum-check decks at 0.625-0.75h (docs/validation.md); the
+      ! tolerance keeps a zone of exactly 0.1h (its rounded element) quiet
+      if (rec%tear_element > 0.1_dp*m%thickness*(1.0_dp + 1.0e-6_dp)) then
          call warn('tearing point on elements of '//num(anint(1.0e3_dp*rec%tear_element/m%thickness)/1.0e3_dp)// &
                    'h at s = '//num(anint(1.0e2_dp*rec%tear_s/m%thickness)/1.0e2_dp)// &
                    'h: it converges on elements of 0.1h or shorter there (docs/validation.md); '// &
