@@ -229,23 +229,48 @@ ZONES = [("input/cc_fig5a_beadA_steel.nml", 8, 15), ("input/cc_fig6_beadB_steel.
          ("input/cc_beadA_steel_mu0.nml", 8, 15)]
 
 
-def gen_tearing_zone(ctx):
-    """docs/validation.md: the clamped steel continuum-check decks with a
-    refined zone where the neck forms (&sheet refine_from, refine_to; its
-    elements 0.156h at 80 elements, halved with them),
-    scripts/convergence.sh -m -n "80 160 320", verbatim."""
-    zdir = os.path.join(ctx.tmp, "zone_decks")
+def zone_decks(ctx, folder, zone_h, stop):
+    """Copies of the clamped steel continuum-check decks with the refined
+    zone of ZONES and elements of zone_h there; stop: stop_at_localization
+    set to .true. (the copies end at the tearing point)."""
+    zdir = os.path.join(ctx.tmp, folder)
     os.makedirs(zdir, exist_ok=True)
     decks = []
     for deck, s0, s1 in ZONES:
         text = read_doc(deck)
         if "\n&sheet\n" not in text:
             raise RuntimeError(f"{deck} has no &sheet line of its own")
+        text = text.replace("\n&sheet\n", "\n&sheet\n   refine_from = %g, refine_to = %g, "
+                            "refine_element = %g\n" % (s0, s1, zone_h), 1)
+        if stop:
+            if "stop_at_localization = .false." not in text:
+                raise RuntimeError(f"{deck} does not set stop_at_localization = .false.")
+            text = text.replace("stop_at_localization = .false.", "stop_at_localization = .true.")
         copy = os.path.join(zdir, os.path.basename(deck)[:-4] + "_zone.nml")
         with open(copy, "w") as out:
-            out.write(text.replace("\n&sheet\n", "\n&sheet\n   refine_from = %g, refine_to = %g, "
-                                   "refine_element = 0.156\n" % (s0, s1), 1))
+            out.write(text)
         decks.append(copy)
+    return decks
+
+
+def gen_tearing_zone_steps(ctx):
+    """docs/validation.md: the step study (every increment halved) of the
+    clamped steel continuum-check decks with a refined zone of 0.078h,
+    stopped at the tearing point, scripts/convergence.sh -s, verbatim."""
+    decks = zone_decks(ctx, "zone_step_decks", 0.078, True)
+    out = script_output(ctx, ["scripts/convergence.sh", "-s", "-o", os.path.join(ctx.tmp, "zone_step")]
+                        + decks)
+    text = ("```\n$ scripts/convergence.sh -s <the decks with refine_element = 0.078, "
+            "stop_at_localization = .true.>\n" + out + "\n```")
+    return lambda raw: text
+
+
+def gen_tearing_zone(ctx):
+    """docs/validation.md: the clamped steel continuum-check decks with a
+    refined zone where the neck forms (&sheet refine_from, refine_to; its
+    elements 0.156h at 80 elements, halved with them),
+    scripts/convergence.sh -m -n "80 160 320", verbatim."""
+    decks = zone_decks(ctx, "zone_decks", 0.156, False)
     out = script_output(ctx, ["scripts/convergence.sh", "-m", "-o", os.path.join(ctx.tmp, "zone"),
                               "-n", "80 160 320"] + decks)
     zones = ", ".join("%s [%g, %g]" % (os.path.basename(d)[:-4], a, b) for d, a, b in ZONES)
@@ -295,6 +320,8 @@ GENERATORS = {
                             "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks"),
     "tearing_zone": ("docs/validation.md", gen_tearing_zone,
                      "scripts/convergence.sh -m on the clamped cc_ steel decks with a refined zone"),
+    "tearing_zone_steps": ("docs/validation.md", gen_tearing_zone_steps,
+                           "scripts/convergence.sh -s on the clamped cc_ steel decks with a zone of 0.078h"),
     "contact_cost": ("docs/performance.md", gen_contact_cost,
                      "scripts/bench.sh on every input/fig*.nml and its copy with the contact section"
                      " (not checkable)"),
