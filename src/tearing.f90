@@ -165,13 +165,11 @@ contains
       type(run_record), intent(inout) :: rec
       real(dp), intent(in) :: load
       integer, intent(in) :: k
-      integer :: e
       rec%torn = .true.
       rec%tear_phase = 'pull'
       rec%tear_load = load
       rec%tear_s = station_position(m, k)
-      e = (k - 1)/n_gauss + 1
-      rec%tear_element = m%x(e + 1) - m%x(e)
+      rec%tear_element = element_length_at(m, rec%tear_s)
       ! on coarser elements the neck (width of order h/sqrt(12), §12.7) is
       ! not resolved and the force's maximum comes late: 19-52% on the
       ! continuum-check decks at 0.625-0.75h (docs/validation.md); the
