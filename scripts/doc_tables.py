@@ -196,6 +196,38 @@ def gen_step_study(ctx):
     return lambda raw: text
 
 
+def gen_paper_criterion_steps(ctx):
+    """docs/validation.md: the step study of fig5a down to every increment
+    divided by 8 (scripts/convergence.sh -s -f "1 0.5 0.25 0.125"), verbatim,
+    then from each run's pull.dat the smallest localization indicator (7.2)
+    at the first increment past 0.5h, 1h and 1.5h of pull, and the place
+    s* of the paper's criterion."""
+    deck = "input/fig5a_beadA_steel.nml"
+    factors = ["1", "0.5", "0.25", "0.125"]
+    outdir = os.path.join(ctx.tmp, "paper_steps")
+    out = script_output(ctx, ["scripts/convergence.sh", "-s", "-f", " ".join(factors), "-o", outdir, deck])
+    marks = [0.5, 1.0, 1.5]
+    lines = ["", "factor   g(0.5h)   g(1.0h)   g(1.5h)    s*/h"]
+    for f in factors:
+        run = os.path.join(outdir, f"fig5a_beadA_steel_step{f}")
+        found = {}
+        with open(os.path.join(run, "pull.dat")) as pull:
+            for line in pull:
+                if line.startswith("#") or not line.strip():
+                    continue
+                cols = line.split()
+                delta, g = float(cols[0]), float(cols[5])
+                for mark in marks:
+                    if mark not in found and delta >= mark:
+                        found[mark] = g
+        star = read_summary(os.path.join(run, "summary.txt")).get("tearing_s_over_h", "none")
+        cells = ["%9.2e" % found[m] if m in found else "%9s" % "-" for m in marks]
+        lines.append("%-6s %s %7s" % (f, " ".join(cells), "%.2f" % float(star) if star != "none" else star))
+    text = ("```\n$ scripts/convergence.sh -s -f \"1 0.5 0.25 0.125\" input/fig5a_beadA_steel.nml\n"
+            + out + "\n" + "\n".join(lines) + "\n```")
+    return lambda raw: text
+
+
 def gen_convergence(ctx):
     """docs/validation.md: scripts/convergence.sh on fig5a and fig9c, verbatim."""
     out = script_output(ctx, ["scripts/convergence.sh", "-m", "-o", os.path.join(ctx.tmp, "conv"),
@@ -313,6 +345,8 @@ GENERATORS = {
     "paper_table": ("docs/validation.md", gen_paper_table, "every input/fig*.nml and strip_tension.nml"),
     "step_study": ("docs/validation.md", gen_step_study,
                    "scripts/convergence.sh -s on every input/fig*.nml and input/cc_*.nml"),
+    "paper_criterion_steps": ("docs/validation.md", gen_paper_criterion_steps,
+                              "scripts/convergence.sh -s to 1/8 of the increments on fig5a, and its indicator"),
     "convergence": ("docs/validation.md", gen_convergence, "scripts/convergence.sh -m on fig5a, fig9c"),
     "convergence_shipped": ("docs/validation.md", gen_convergence_shipped,
                             "scripts/convergence.sh -m -n \"96 192 384\" on fig9c"),
