@@ -20,7 +20,7 @@ module analysis
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular, newton_solve_failed
    use step_control, only: judge_force_change, next_increment, cutback_factor, extrapolation_error, &
-                           judge_error, displacement_error
+                           judge_error, displacement_error, failed_cap, failed_cap_growth
    use tearing, only: check_localization, check_fold, strain_limit_indicator, check_load_maximum, &
                       tear_at_snap_back, element_length_at
    use energy, only: energy_totals, add_increment_work
@@ -107,7 +107,7 @@ contains
       real(dp), allocatable :: nl_old(:), r(:), u_prev(:), ind_old(:, :), dof_scale(:)
       type(load_type) :: ld
       type(newton_result) :: nr
-      real(dp) :: p, dt, dt_prev, h, eh
+      real(dp) :: p, dt, dt_prev, h, eh, dt_failed
       real(dp) :: reaction, punch, lift, pen, min_ind, force, force_change, target, tool_work
       real(dp) :: next_snapshot, ell, prev_conjugate, err, dt_err, err_redone
       integer :: pulled
@@ -143,6 +143,7 @@ contains
       ! the force two converged states back, for the error estimate
       prev_conjugate = 0.0_dp
       have_force_prev = .false.
+      dt_failed = huge(1.0_dp)
       next_snapshot = p0 + ctl%snapshot_every_over_h*h
       do while (p < p1 - 1.0e-12_dp*h)
          dt = min(dt, p1 - p)
@@ -174,6 +175,7 @@ contains
                rec%status = run_no_convergence
                return
             end if
+            dt_failed = dt
             dt = cutback_factor*dt
             s%u1 = s%u
             if (dt < ctl%min_increment) then
@@ -336,6 +338,13 @@ contains
             dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations, dt_err)
          else
             dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations)
+         end if
+         ! not straight back to a length that failed (docs/theory.md §8.3);
+         ! the bound lapses once it no longer binds
+         if (dt_failed < huge(1.0_dp)) then
+            dt = max(min(dt, failed_cap*dt_failed), ctl%min_increment)
+            dt_failed = failed_cap_growth*dt_failed
+            if (failed_cap*dt_failed > ctl%max_increment) dt_failed = huge(1.0_dp)
          end if
          have_prev = .true.
       end do

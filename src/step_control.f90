@@ -12,11 +12,16 @@ module step_control
    use controls, only: controls_type
    implicit none
    private
-   public :: judge_force_change, next_increment, cutback_factor, extrapolation_error, judge_error, &
+   public :: judge_force_change, next_increment, cutback_factor, failed_cap, failed_cap_growth, extrapolation_error, judge_error, &
              displacement_error
 
    !> the increment is multiplied by this after a failed or redone increment
    real(dp), parameter :: cutback_factor = 0.25_dp
+   !> after a failed attempt of length dt_f the following increments are at
+   !> most failed_cap dt_f, the bound growing by failed_cap_growth per
+   !> converged increment: without it the step grows straight back to the
+   !> length that failed (docs/theory.md §8.3)
+   real(dp), parameter :: failed_cap = 0.5_dp, failed_cap_growth = 1.1_dp
    !> an increment whose error estimate exceeds this many times
    !> step_tolerance is redone (its successor would be less than half as long)
    real(dp), parameter :: error_redo_ratio = 4.0_dp
