@@ -20,7 +20,7 @@ module analysis
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular, newton_solve_failed
    use step_control, only: judge_force_change, next_increment, cutback_factor, extrapolation_error, &
-                           judge_error, displacement_error, failed_cap, failed_cap_growth
+                           judge_error, displacement_error, bound_after_failure
    use tearing, only: check_localization, check_fold, strain_limit_indicator, check_load_maximum, &
                       tear_at_snap_back, element_length_at
    use energy, only: energy_totals, add_increment_work
@@ -339,13 +339,7 @@ contains
          else
             dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations)
          end if
-         ! not straight back to a length that failed (docs/theory.md §8.3);
-         ! the bound lapses once it no longer binds
-         if (dt_failed < huge(1.0_dp)) then
-            dt = max(min(dt, failed_cap*dt_failed), ctl%min_increment)
-            dt_failed = failed_cap_growth*dt_failed
-            if (failed_cap*dt_failed > ctl%max_increment) dt_failed = huge(1.0_dp)
-         end if
+         call bound_after_failure(ctl, dt, dt_failed)
          have_prev = .true.
       end do
    end subroutine run_phase
