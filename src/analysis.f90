@@ -20,7 +20,7 @@ module analysis
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular, newton_solve_failed
    use step_control, only: judge_force_change, next_increment, cutback_factor, extrapolation_error, &
-                           judge_error, displacement_error
+                           judge_error, displacement_error, bound_after_failure
    use tearing, only: check_localization, check_fold, strain_limit_indicator, check_load_maximum, &
                       tear_at_snap_back, element_length_at
    use energy, only: energy_totals, add_increment_work
@@ -107,7 +107,7 @@ contains
       real(dp), allocatable :: nl_old(:), r(:), u_prev(:), ind_old(:, :), dof_scale(:)
       type(load_type) :: ld
       type(newton_result) :: nr
-      real(dp) :: p, dt, dt_prev, h, eh
+      real(dp) :: p, dt, dt_prev, h, eh, dt_failed
       real(dp) :: reaction, punch, lift, pen, min_ind, force, force_change, target, tool_work
       real(dp) :: next_snapshot, ell, prev_conjugate, err, dt_err, err_redone
       integer :: pulled
@@ -143,6 +143,7 @@ contains
       ! the force two converged states back, for the error estimate
       prev_conjugate = 0.0_dp
       have_force_prev = .false.
+      dt_failed = huge(1.0_dp)
       next_snapshot = p0 + ctl%snapshot_every_over_h*h
       do while (p < p1 - 1.0e-12_dp*h)
          dt = min(dt, p1 - p)
@@ -174,6 +175,7 @@ contains
                rec%status = run_no_convergence
                return
             end if
+            dt_failed = dt
             dt = cutback_factor*dt
             s%u1 = s%u
             if (dt < ctl%min_increment) then
@@ -337,6 +339,7 @@ contains
          else
             dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations)
          end if
+         call bound_after_failure(ctl, dt, dt_failed)
          have_prev = .true.
       end do
    end subroutine run_phase

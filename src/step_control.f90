@@ -13,10 +13,14 @@ module step_control
    implicit none
    private
    public :: judge_force_change, next_increment, cutback_factor, extrapolation_error, judge_error, &
-             displacement_error
+             displacement_error, bound_after_failure, failed_cap, failed_cap_growth
 
    !> the increment is multiplied by this after a failed or redone increment
    real(dp), parameter :: cutback_factor = 0.25_dp
+   !> after a failed attempt of length dt_f the following increments are at
+   !> most failed_cap dt_f, the bound growing by failed_cap_growth per
+   !> converged increment (bound_after_failure)
+   real(dp), parameter :: failed_cap = 0.5_dp, failed_cap_growth = 1.1_dp
    !> an increment whose error estimate exceeds this many times
    !> step_tolerance is redone (its successor would be less than half as long)
    real(dp), parameter :: error_redo_ratio = 4.0_dp
@@ -206,4 +210,23 @@ contains
       if (present(dt_err)) dt_next = min(dt_next, dt_err)
       dt_next = min(max(dt_next, ctl%min_increment), ctl%max_increment)
    end function next_increment
+
+   !> BOUND_AFTER_FAILURE: the next increment after a converged one, held
+   !> below the length of the last failed attempt (docs/theory.md §8.3):
+   !> without the bound the step grows straight back to the length that
+   !> failed and fails again.
+   !>  ctl        [in]    controls (min_increment, max_increment)
+   !>  dt         [inout] the next increment (next_increment), bounded by
+   !>                     failed_cap dt_failed, not below min_increment
+   !>  dt_failed  [inout] the last failed attempt's length (huge: none); it
+   !>                     grows by failed_cap_growth, and lapses to huge once
+   !>                     failed_cap dt_failed is above max_increment
+   pure subroutine bound_after_failure(ctl, dt, dt_failed)
+      type(controls_type), intent(in) :: ctl
+      real(dp), intent(inout) :: dt, dt_failed
+      if (dt_failed >= huge(1.0_dp)) return
+      dt = max(min(dt, failed_cap*dt_failed), ctl%min_increment)
+      dt_failed = failed_cap_growth*dt_failed
+      if (failed_cap*dt_failed > ctl%max_increment) dt_failed = huge(1.0_dp)
+   end subroutine bound_after_failure
 end module step_control
