@@ -200,7 +200,7 @@ def gen_paper_criterion_steps(ctx):
     """docs/validation.md: the step study of fig5a down to every increment
     divided by 8 (scripts/convergence.sh -s -f "1 0.5 0.25 0.125"), verbatim,
     then from each run's pull.dat the smallest localization indicator (7.2)
-    at the first increment past 0.5h, 1h and 1.5h of pull, and the place
+    at 0.5h, 1h and 1.5h of pull (linear between increments), and the place
     s* of the paper's criterion."""
     deck = "input/fig5a_beadA_steel.nml"
     factors = ["1", "0.5", "0.25", "0.125"]
@@ -211,6 +211,7 @@ def gen_paper_criterion_steps(ctx):
     for f in factors:
         run = os.path.join(outdir, f"fig5a_beadA_steel_step{f}")
         found = {}
+        last = None
         with open(os.path.join(run, "pull.dat")) as pull:
             for line in pull:
                 if line.startswith("#") or not line.strip():
@@ -218,8 +219,11 @@ def gen_paper_criterion_steps(ctx):
                 cols = line.split()
                 delta, g = float(cols[0]), float(cols[5])
                 for mark in marks:
-                    if mark not in found and delta >= mark:
-                        found[mark] = g
+                    if mark not in found and delta >= mark and last is not None:
+                        # linear between the increments around the mark
+                        w = (mark - last[0])/(delta - last[0])
+                        found[mark] = last[1] + w*(g - last[1])
+                last = (delta, g)
         star = read_summary(os.path.join(run, "summary.txt")).get("tearing_s_over_h", "none")
         cells = ["%9.2e" % found[m] if m in found else "%9s" % "-" for m in marks]
         lines.append("%-6s %s %7s" % (f, " ".join(cells), "%.2f" % float(star) if star != "none" else star))
