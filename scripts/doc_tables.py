@@ -219,12 +219,12 @@ def gen_paper_criterion_steps(ctx):
                 cols = line.split()
                 delta, g = float(cols[0]), float(cols[5])
                 for mark in marks:
-                    if mark not in found and delta >= mark and last is not None:
+                    if mark not in found and last is not None and last[0] < mark <= delta:
                         # linear between the increments around the mark
                         w = (mark - last[0])/(delta - last[0])
                         found[mark] = last[1] + w*(g - last[1])
                 last = (delta, g)
-        star = read_summary(os.path.join(run, "summary.txt")).get("tearing_s_over_h", "none")
+        star = read_summary(os.path.join(run, "summary.txt")).get("s_star_over_h", "none")
         cells = ["%9.2e" % found[m] if m in found else "%9s" % "-" for m in marks]
         lines.append("%-6s %s %7s" % (f, " ".join(cells), "%.2f" % float(star) if star != "none" else star))
     text = ("```\n$ scripts/convergence.sh -s -f \"1 0.5 0.25 0.125\" input/fig5a_beadA_steel.nml\n"
