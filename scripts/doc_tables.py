@@ -261,57 +261,88 @@ def gen_tearing_convergence(ctx):
     return lambda raw: text
 
 
-ZONES = [("input/cc_fig5a_beadA_steel.nml", 8, 15), ("input/cc_fig6_beadB_steel.nml", 17, 24),
-         ("input/cc_beadA_steel_mu0.nml", 8, 15)]
+NECK_DECKS = ["input/cc_fig5a_beadA_steel.nml", "input/cc_fig6_beadB_steel.nml",
+              "input/cc_beadA_steel_mu0.nml"]
 
 
-def zone_decks(ctx, folder, zone_h, stop):
-    """Copies of the clamped steel continuum-check decks with the refined
-    zone of ZONES and elements of zone_h there; stop: stop_at_localization
-    set to .true. (the copies end at the tearing point)."""
-    zdir = os.path.join(ctx.tmp, folder)
-    os.makedirs(zdir, exist_ok=True)
+def neck_decks(ctx, folder, zone_h=None):
+    """Copies of the clamped steel continuum-check decks with &sheet
+    refine_neck = .true. (and refine_element = zone_h if given), stopped at
+    the tearing point (stop_at_localization = .true.)."""
+    ndir = os.path.join(ctx.tmp, folder)
+    os.makedirs(ndir, exist_ok=True)
     decks = []
-    for deck, s0, s1 in ZONES:
+    for deck in NECK_DECKS:
         text = read_doc(deck)
-        if "\n&sheet\n" not in text:
-            raise RuntimeError(f"{deck} has no &sheet line of its own")
-        text = text.replace("\n&sheet\n", "\n&sheet\n   refine_from = %g, refine_to = %g, "
-                            "refine_element = %g\n" % (s0, s1, zone_h), 1)
-        if stop:
-            if "stop_at_localization = .false." not in text:
-                raise RuntimeError(f"{deck} does not set stop_at_localization = .false.")
-            text = text.replace("stop_at_localization = .false.", "stop_at_localization = .true.")
-        copy = os.path.join(zdir, os.path.basename(deck)[:-4] + "_zone.nml")
+        if "\n&sheet\n" not in text or "stop_at_localization = .false." not in text:
+            raise RuntimeError(f"{deck}: no &sheet line of its own or no stop_at_localization = .false.")
+        extra = "   refine_neck = .true.\n"
+        if zone_h is not None:
+            extra += "   refine_element = %g\n" % zone_h
+        text = text.replace("\n&sheet\n", "\n&sheet\n" + extra, 1)
+        text = text.replace("stop_at_localization = .false.", "stop_at_localization = .true.")
+        copy = os.path.join(ndir, os.path.basename(deck)[:-4] + "_neck.nml")
         with open(copy, "w") as out:
             out.write(text)
         decks.append(copy)
     return decks
 
 
-def gen_tearing_zone_steps(ctx):
+def gen_tearing_neck(ctx):
+    """docs/validation.md: the clamped steel continuum-check decks with
+    refine_neck, stopped at the tearing point, scripts/convergence.sh -m -n
+    "80 160 320 640" (the zone's elements stay 0.08h; at 640 the uniform
+    elements are already shorter and there is no zone), verbatim, then from
+    the summaries the first pass's tearing point and place, the zone, the
+    elements of the run proper and the assemblies of the first pass (asm1)
+    and of the run proper (asm)."""
+    decks = neck_decks(ctx, "neck_decks")
+    outdir = os.path.join(ctx.tmp, "neck")
+    counts = ["80", "160", "320", "640"]
+    out = script_output(ctx, ["scripts/convergence.sh", "-m", "-o", outdir, "-n", " ".join(counts)] + decks)
+    lines = ["", "%-28s %5s %9s %9s %9s %9s %8s %8s %8s" % ("deck", "n", "first/h", "s1/h", "zone_from",
+                                                            "zone_to", "elements", "asm1", "asm")]
+    for deck in decks:
+        name = os.path.basename(deck)[:-4]
+        for n in counts:
+            summ = read_summary(os.path.join(outdir, f"{name}_{n}", "summary.txt"))
+
+            def num(key, fmt="%9.3f"):
+                v = summ.get(key, "none")
+                return fmt % float(v) if v != "none" else "%9s" % v
+            lines.append("%-28s %5s %s %s %s %s %8s %8s %8s" % (name, n, num("coarse_tearing_delta_over_h"),
+                                                                 num("coarse_tearing_s_over_h"),
+                                                                 num("neck_zone_from_over_h"),
+                                                                 num("neck_zone_to_over_h"), summ.get("elements"),
+                                                                 summ.get("coarse_assemblies"),
+                                                                 summ.get("assemblies")))
+    text = ('```\n$ scripts/convergence.sh -m -n "80 160 320 640" <the decks with refine_neck = .true., '
+            "stop_at_localization = .true.>\n" + out + "\n" + "\n".join(lines) + "\n```")
+    return lambda raw: text
+
+
+def gen_tearing_neck_steps(ctx):
     """docs/validation.md: the step study (every increment halved) of the
-    clamped steel continuum-check decks with a refined zone of 0.078h,
-    stopped at the tearing point, scripts/convergence.sh -s, verbatim."""
-    decks = zone_decks(ctx, "zone_step_decks", 0.078, True)
-    out = script_output(ctx, ["scripts/convergence.sh", "-s", "-o", os.path.join(ctx.tmp, "zone_step")]
+    clamped steel continuum-check decks with refine_neck, stopped at the
+    tearing point, scripts/convergence.sh -s, verbatim."""
+    decks = neck_decks(ctx, "neck_step_decks")
+    out = script_output(ctx, ["scripts/convergence.sh", "-s", "-o", os.path.join(ctx.tmp, "neck_step")]
                         + decks)
-    text = ("```\n$ scripts/convergence.sh -s <the decks with refine_element = 0.078, "
+    text = ("```\n$ scripts/convergence.sh -s <the decks with refine_neck = .true., "
             "stop_at_localization = .true.>\n" + out + "\n```")
     return lambda raw: text
 
 
-def gen_tearing_zone(ctx):
-    """docs/validation.md: the clamped steel continuum-check decks with a
-    refined zone where the neck forms (&sheet refine_from, refine_to; its
-    elements 0.156h at 80 elements, halved with them),
-    scripts/convergence.sh -m -n "80 160 320", verbatim."""
-    decks = zone_decks(ctx, "zone_decks", 0.156, False)
-    out = script_output(ctx, ["scripts/convergence.sh", "-m", "-o", os.path.join(ctx.tmp, "zone"),
+def gen_tearing_neck_zone(ctx):
+    """docs/validation.md: the clamped steel continuum-check decks with
+    refine_neck and refine_element = 0.16, every element halved twice
+    (scripts/convergence.sh -m -n "80 160 320": the zone's elements 0.16h,
+    0.08h, 0.04h), verbatim."""
+    decks = neck_decks(ctx, "neck_zone_decks", 0.16)
+    out = script_output(ctx, ["scripts/convergence.sh", "-m", "-o", os.path.join(ctx.tmp, "neck_zone"),
                               "-n", "80 160 320"] + decks)
-    zones = ", ".join("%s [%g, %g]" % (os.path.basename(d)[:-4], a, b) for d, a, b in ZONES)
-    text = ("```\n$ scripts/convergence.sh -m -n \"80 160 320\" <the decks with refine_element = 0.156>\n"
-            "# zones (refine_from, refine_to): " + zones + "\n" + out + "\n```")
+    text = ("```\n$ scripts/convergence.sh -m -n \"80 160 320\" <the decks with refine_neck = .true., "
+            "refine_element = 0.16, stop_at_localization = .true.>\n" + out + "\n```")
     return lambda raw: text
 
 
@@ -356,10 +387,13 @@ GENERATORS = {
                             "scripts/convergence.sh -m -n \"96 192 384\" on fig9c"),
     "tearing_convergence": ("docs/validation.md", gen_tearing_convergence,
                             "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks"),
-    "tearing_zone": ("docs/validation.md", gen_tearing_zone,
-                     "scripts/convergence.sh -m on the clamped cc_ steel decks with a refined zone"),
-    "tearing_zone_steps": ("docs/validation.md", gen_tearing_zone_steps,
-                           "scripts/convergence.sh -s on the clamped cc_ steel decks with a zone of 0.078h"),
+    "tearing_neck": ("docs/validation.md", gen_tearing_neck,
+                     "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks with refine_neck"),
+    "tearing_neck_steps": ("docs/validation.md", gen_tearing_neck_steps,
+                           "scripts/convergence.sh -s on the clamped cc_ steel decks with refine_neck"),
+    "tearing_neck_zone": ("docs/validation.md", gen_tearing_neck_zone,
+                          "scripts/convergence.sh -m on the clamped cc_ steel decks with refine_neck,"
+                          " zone elements 0.16h halved twice"),
     "contact_cost": ("docs/performance.md", gen_contact_cost,
                      "scripts/bench.sh on every input/fig*.nml and its copy with the contact section"
                      " (not checkable)"),

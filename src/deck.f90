@@ -10,7 +10,8 @@
 !>   &control   title, output_dir, stop_at_localization, tearing_criterion, tearing_length, fold_curvature,
 !>              log_residuals, predictor, snapshot_every
 !>   &sheet     thickness, length, n_elements, mesh_beta, left_edge, normal_stress,
-!>              back_tension
+!>              back_tension, strain_gradient, refine_from, refine_to, refine_element,
+!>              refine_neck
 !>   &material  model, umat_props, youngs_modulus, poissons_ratio, r_value, hardening,
 !>              swift_k, swift_eps0, swift_n, voce_sigma0, voce_q, voce_b,
 !>              curve_file, thickness_points
@@ -42,7 +43,7 @@ module deck
    use errors, only: error_list, add_error, warn
    use text, only: lower, num, itoa, file_exists
    use bead_builder, only: bead_a_over_h
-   use mesh, only: zone_counts
+   use mesh, only: zone_counts, neck_half_width
    implicit none
    private
    public :: deck_type, group_names, resolve_defaults, validate_deck, max_umat_props, &
@@ -90,6 +91,7 @@ module deck
       real(dp) :: refine_from = 0.0_dp                ! refined zone of the mesh: from s/h (reference position)
       real(dp) :: refine_to = 0.0_dp                  ! ... to s/h
       real(dp) :: refine_element = 0.0_dp            ! element length in the zone, units of h (0: no zone)
+      logical :: refine_neck = .false.                ! a coarse pass finds the neck, the run refines around it
       ! &material
       real(dp) :: youngs_modulus = 207000.0_dp        ! MPa
       real(dp) :: poissons_ratio = 0.3_dp
@@ -166,6 +168,9 @@ contains
       if (is_unset(d%h1)) d%h1 = bead_a_over_h(5)*h
       if (is_unset(d%h2)) d%h2 = bead_a_over_h(6)*h
       if (is_unset(d%pull_distance)) d%pull_distance = 10.0_dp*h
+      ! the neck's zone: elements of 0.08h, below the 0.1h on which the
+      ! load maximum converges (docs/theory.md §7.5)
+      if (d%refine_neck .and. .not. (abs(d%refine_element) > 0.0_dp)) d%refine_element = 0.08_dp
       if (is_unset(d%min_increment)) d%min_increment = 1.0e-6_dp*h
       ! 0.2h resolves the force curves; where the path turns, the error
       ! estimate of the step control (step_tolerance) shortens it
@@ -438,6 +443,10 @@ contains
       call check_real(errs, at(p, 'sheet', 'refine_element'), d%refine_element, lo=0.0_dp)
       call check_real(errs, at(p, 'sheet', 'refine_from'), d%refine_from)
       call check_real(errs, at(p, 'sheet', 'refine_to'), d%refine_to)
+      if (d%refine_neck) then
+         call check_neck_zone(d, p, errs)
+         return
+      end if
       if (.not. (d%refine_element > 0.0_dp)) then
          ! (a negative or NaN refine_element is reported above)
          if (ieee_is_finite(d%refine_from) .and. ieee_is_finite(d%refine_to) &
@@ -474,6 +483,47 @@ contains
          'gives '//itoa(sum(counts))//' elements, more than '//itoa(max_elements)// &
          ' (the largest mesh the program holds in memory)')
    end subroutine check_refined_zone
+
+   !> check_neck_zone -- &sheet refine_neck = .true.: the program places the
+   !> zone (docs/theory.md §7.5), so refine_from and refine_to are not given;
+   !> the neck is the load maximum of a pull, so the deck needs tools, a
+   !> pull and tearing_criterion = 'load_maximum'; refine_element (default
+   !> 0.08) is the zone's element, and the refined mesh must fit in memory.
+   !>
+   !> d     [in]     the resolved deck.
+   !> p     [in]     the deck's path.
+   !> errs  [in,out] problems are appended.
+   subroutine check_neck_zone(d, p, errs)
+      type(deck_type), intent(in) :: d
+      character(len=*), intent(in) :: p
+      type(error_list), intent(inout) :: errs
+      real(dp) :: half
+      integer :: counts(3)
+      if (abs(d%refine_from) > 0.0_dp .or. abs(d%refine_to) > 0.0_dp) &
+         call fail(errs, at(p, 'sheet', 'refine_from'), 'must not be given with refine_neck = .true.'// &
+                   ' (the program places the zone, '//num(neck_half_width)//'h either side of the neck'// &
+                   ' of a pass on the uniform mesh); give either refine_neck or refine_from and refine_to')
+      if (d%bead == 'none') call fail(errs, at(p, 'sheet', 'refine_neck'), &
+                                      "needs tools (bead /= 'none'): the neck is that of a pull through a bead")
+      if (d%tearing_criterion /= 'load_maximum') call fail(errs, at(p, 'sheet', 'refine_neck'), &
+         "needs &control tearing_criterion = 'load_maximum' (the neck is the pull force's maximum)")
+      if (ieee_is_finite(d%pull_distance)) then
+         if (.not. (d%pull_distance > 0.0_dp)) call fail(errs, at(p, 'sheet', 'refine_neck'), &
+            'needs a pull (&loading pull_distance > 0): the neck is found while pulling')
+      end if
+      if (abs(d%mesh_beta - 1.0_dp) > 0.0_dp) call fail(errs, at(p, 'sheet', 'mesh_beta'), &
+         'must be 1 with refine_neck = .true.: the zone replaces the grading')
+      if (.not. (ieee_is_finite(d%refine_element) .and. d%refine_element > 0.0_dp)) return
+      call check_real(errs, at(p, 'sheet', 'refine_element'), d%refine_element, lo=1.0e-3_dp)
+      if (.not. (is_positive(d%thickness) .and. is_positive(d%length) .and. d%n_elements >= 2)) return
+      half = 0.5_dp*d%length/d%thickness
+      ! the largest zone the program can place: a whole one inside the sheet
+      call zone_counts(d%n_elements, half, -min(neck_half_width, half), min(neck_half_width, half), &
+                       d%refine_element, counts)
+      if (sum(counts) > max_elements) call fail(errs, at(p, 'sheet', 'refine_element'), &
+         'gives '//itoa(sum(counts))//' elements with refine_neck, more than '//itoa(max_elements)// &
+         ' (the largest mesh the program holds in memory)')
+   end subroutine check_neck_zone
 
    !> check_real -- require a finite real within optional bounds.
    !>

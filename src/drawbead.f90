@@ -14,7 +14,8 @@ program drawbead
    use controls, only: controls_type
    use model, only: model_type, state_type, state_init
    use record, only: run_record, run_record_init, run_ok, run_no_convergence, run_interrupted, &
-                     run_write_failed
+                     run_write_failed, neck_record
+   use mesh, only: neck_zone
    use analysis, only: run_phase
    use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools, &
                      open_snapshots
@@ -32,10 +33,9 @@ program drawbead
    type(model_type) :: m
    type(controls_type) :: ctl
    type(state_type) :: s
-   type(output_files) :: out
    type(run_record) :: rec
+   type(neck_record) :: neck
    character(len=path_max) :: path, out_override
-   character(len=300) :: errmsg
    character(len=:), allocatable :: iomsg
    integer :: ios
    real(dp) :: t_start, t_end
@@ -60,34 +60,12 @@ program drawbead
    call echo_deck(d, output_unit)
    flush (output_unit)
 
-   call state_init(m, s)
-   call run_record_init(rec)
-   call open_outputs(trim(ctl%output_dir), trim(ctl%title), out, errmsg)
-   if (len_trim(errmsg) == 0 .and. ctl%snapshot_every_over_h > 0.0_dp) &
-      call open_snapshots(out, trim(ctl%title), ctl%snapshot_every_over_h, errmsg)
-   if (len_trim(errmsg) > 0) then
-      call print_error('deck '''//trim(d%deck_file)//''', group &control, '// &
-                       'variable output_dir: '//trim(errmsg))
-      call finish('bad input', exit_input)
-   end if
-
-   if (m%has_tools .and. m%lock_depth > 0.0_dp) then
-      call run_phase(m, ctl, s, 'lock', 0.0_dp, m%lock_depth, out, rec)
-   end if
-   call write_strains(out, 'strain_lock.dat', m, s, 'after locking')
-   call write_tools(out, 'tools_lock.dat', m, s%shift, 'at the end of locking')
-   if (rec%status == run_ok .and. .not. (rec%torn .and. ctl%stop_at_localization)) then
-      call run_phase(m, ctl, s, 'pull', 0.0_dp, m%pull_distance, out, rec)
-   end if
-   call write_strains(out, 'strain_pull.dat', m, s, 'after pulling')
-   call write_tools(out, 'tools_pull.dat', m, s%shift, 'at the end of pulling')
-   call close_outputs(out)
-   if (out%failed .and. rec%status /= run_write_failed) then
-      rec%status = run_write_failed
-      rec%message = 'cannot write '//out%failure
-   end if
+   ! &sheet refine_neck: a first pass on the deck's uniform mesh finds the
+   ! neck, and the run proper refines the mesh around it (docs/theory.md §7.5)
+   if (d%refine_neck) call place_neck_zone(d, m, ctl, neck)
+   call run_case(m, ctl, trim(d%deck_file), trim(ctl%output_dir), neck, s, rec)
    call cpu_time(t_end)
-   call write_summary(out%dir//'/summary.txt', m, s, ctl, rec, t_end - t_start, ios, iomsg)
+   call write_summary(trim(ctl%output_dir)//'/summary.txt', m, s, ctl, rec, t_end - t_start, ios, iomsg)
    if (ios /= 0 .and. rec%status /= run_write_failed) then
       rec%status = run_write_failed
       rec%message = 'cannot write '//iomsg
@@ -107,6 +85,138 @@ program drawbead
    end select
 
 contains
+
+   !> RUN_CASE: one run of a model: locking, then pulling, the result files
+   !> in dir (all but summary.txt, which the caller writes).
+   !>  m          [in]  the model
+   !>  ctl        [in]  the controls
+   !>  deck_file  [in]  the deck's name, for an error message
+   !>  dir        [in]  the output directory
+   !>  neck       [in]  the neck's refined zone, for the summary
+   !>  s          [out] the state at the end
+   !>  rec        [out] what the run found
+   subroutine run_case(m, ctl, deck_file, dir, neck, s, rec)
+      type(model_type), intent(in) :: m
+      type(controls_type), intent(in) :: ctl
+      character(len=*), intent(in) :: deck_file, dir
+      type(neck_record), intent(in) :: neck
+      type(state_type), intent(out) :: s
+      type(run_record), intent(out) :: rec
+      type(output_files) :: out
+      character(len=300) :: errmsg
+      call state_init(m, s)
+      call run_record_init(rec)
+      rec%neck = neck
+      call open_outputs(dir, trim(ctl%title), out, errmsg)
+      if (len_trim(errmsg) == 0 .and. ctl%snapshot_every_over_h > 0.0_dp) &
+         call open_snapshots(out, trim(ctl%title), ctl%snapshot_every_over_h, errmsg)
+      if (len_trim(errmsg) > 0) then
+         call print_error('deck '''//deck_file//''', group &control, '// &
+                          'variable output_dir: '//trim(errmsg))
+         call finish('bad input', exit_input)
+      end if
+      if (m%has_tools .and. m%lock_depth > 0.0_dp) then
+         call run_phase(m, ctl, s, 'lock', 0.0_dp, m%lock_depth, out, rec)
+      end if
+      call write_strains(out, 'strain_lock.dat', m, s, 'after locking')
+      call write_tools(out, 'tools_lock.dat', m, s%shift, 'at the end of locking')
+      if (rec%status == run_ok .and. .not. (rec%torn .and. ctl%stop_at_localization)) then
+         call run_phase(m, ctl, s, 'pull', 0.0_dp, m%pull_distance, out, rec)
+      end if
+      call write_strains(out, 'strain_pull.dat', m, s, 'after pulling')
+      call write_tools(out, 'tools_pull.dat', m, s%shift, 'at the end of pulling')
+      call close_outputs(out)
+      if (out%failed .and. rec%status /= run_write_failed) then
+         rec%status = run_write_failed
+         rec%message = 'cannot write '//out%failure
+      end if
+   end subroutine run_case
+
+   !> PLACE_NECK_ZONE: &sheet refine_neck (docs/theory.md §7.5).  A first
+   !> pass runs the deck on its uniform mesh into <output_dir>/coarse,
+   !> stopped at its tearing point and pulled up to coarse_pull times the
+   !> deck's pull (the uniform mesh's neck comes up to a fifth later than
+   !> the resolved one); the model is then rebuilt with a zone of elements
+   !> of refine_element around that neck (mesh's neck_zone).  Without a
+   !> neck in the first pass, or when the uniform elements are no longer
+   !> than refine_element, the model stays as it is.
+   !>  d     [in]     the deck
+   !>  m     [in,out] the model of the deck's uniform mesh; on return, the
+   !>                 model of the run proper
+   !>  ctl   [in]     the controls of the run proper
+   !>  neck  [out]    what was done, for the summary
+   subroutine place_neck_zone(d, m, ctl, neck)
+      type(deck_type), intent(in) :: d
+      type(model_type), intent(inout) :: m
+      type(controls_type), intent(in) :: ctl
+      type(neck_record), intent(out) :: neck
+      real(dp), parameter :: coarse_pull = 1.3_dp
+      type(model_type) :: m1
+      type(controls_type) :: ctl1, ctl_unused
+      type(state_type) :: s1
+      type(run_record) :: rec1
+      type(deck_type) :: d2
+      type(error_list) :: errs2
+      real(dp) :: h, t0, t1
+      integer :: ios1
+      character(len=:), allocatable :: iomsg1
+      h = m%thickness
+      neck%refinement = 'none'
+      if (m%x(2) - m%x(1) <= d%refine_element*h*(1.0_dp + 1.0e-9_dp)) then
+         write (output_unit, '(a)') '# drawbead: refine_neck: the uniform elements are no longer than '// &
+            'refine_element: no zone'
+         return
+      end if
+      m1 = m
+      m1%pull_distance = coarse_pull*m%pull_distance
+      ctl1 = ctl
+      ctl1%stop_at_localization = .true.
+      ctl1%output_dir = trim(ctl%output_dir)//'/coarse'
+      write (output_unit, '(a,i0,a)') '# drawbead: refine_neck: first pass on the uniform mesh (', &
+         m%n_el, ' elements) into '//trim(ctl1%output_dir)
+      flush (output_unit)
+      call cpu_time(t0)
+      call run_case(m1, ctl1, trim(d%deck_file), trim(ctl1%output_dir), neck, s1, rec1)
+      call cpu_time(t1)
+      call write_summary(trim(ctl1%output_dir)//'/summary.txt', m1, s1, ctl1, rec1, t1 - t0, ios1, iomsg1)
+      if (ios1 /= 0) then
+         call print_error('cannot write '//iomsg1, 'place_neck_zone')
+         call finish('a result file could not be written', exit_write)
+      end if
+      select case (rec1%status)
+      case (run_interrupted)
+         call print_error(trim(rec1%message), 'run_phase')
+         call finish('interrupted in the first pass of refine_neck (results so far kept in '// &
+                     trim(ctl1%output_dir)//')', exit_interrupted)
+      case (run_write_failed)
+         call print_error(trim(rec1%message), 'output')
+         call finish('a result file could not be written', exit_write)
+      end select
+      neck%coarse_elements = m%n_el
+      neck%coarse_assemblies = rec1%assemblies
+      neck%coarse_torn = rec1%torn .and. rec1%tear_phase == 'pull'
+      if (.not. neck%coarse_torn) then
+         write (output_unit, '(a)') '# drawbead: refine_neck: no neck in the first pass: '// &
+            'the run keeps the uniform mesh'
+         return
+      end if
+      neck%coarse_tear_load = rec1%tear_load
+      neck%coarse_tear_s = rec1%tear_s
+      neck%zone = neck_zone(rec1%tear_s, 0.5_dp*(m%x(m%n_nodes) - m%x(1)), h)
+      neck%refinement = 'zone'
+      d2 = d
+      d2%refine_neck = .false.
+      d2%refine_from = neck%zone(1)/h
+      d2%refine_to = neck%zone(2)/h
+      call setup_run(d2, m, ctl_unused, errs2)
+      if (errs2%count > 0) then
+         call report_errors(errs2, error_unit)
+         call finish('bad input', exit_input)
+      end if
+      write (output_unit, '(a,f0.3,a,f0.3,a,i0,a)') '# drawbead: refine_neck: zone s/h = ', &
+         neck%zone(1)/h, ' to ', neck%zone(2)/h, ' (', m%n_el, ' elements)'
+      flush (output_unit)
+   end subroutine place_neck_zone
 
    !> PARSE_COMMAND_LINE: exactly one deck and at most one -o DIR; --help,
    !> --version and --list-variables answer and stop.  Anything else is an

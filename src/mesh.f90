@@ -9,11 +9,14 @@ module mesh
    implicit none
    private
    public :: graded_nodes, zone_counts, zone_nodes, element_dofs, node_dof, is_slope_dof, dofs_per_node, half_band
-   public :: dof_v, dof_v_slope, dof_w, dof_w_slope
+   public :: dof_v, dof_v_slope, dof_w, dof_w_slope, neck_zone, neck_half_width
 
    integer, parameter :: dofs_per_node = 4, half_band = 7
    !> a node's dofs in their order: v, dv/ds, w, dw/ds
    integer, parameter :: dof_v = 1, dof_v_slope = 2, dof_w = 3, dof_w_slope = 4
+   !> half width of the refined zone around a neck (&sheet refine_neck), in
+   !> units of the thickness (docs/theory.md §7.5)
+   real(dp), parameter :: neck_half_width = 2.0_dp
 
 contains
 
@@ -107,6 +110,22 @@ contains
       end do
       x(k) = half
    end subroutine zone_nodes
+
+   !> NECK_ZONE: the refined zone of &sheet refine_neck (docs/theory.md
+   !> §7.5): neck_half_width h either side of the neck found on the uniform
+   !> mesh, cut at the sheet's ends.  On the uniform mesh of the
+   !> continuum-check decks the neck's station lies 0.4h before the one the
+   !> refined mesh finds, well inside the zone.
+   !>  s_star  [in]  reference position of the neck on the uniform mesh
+   !>  half    [in]  half length L
+   !>  h       [in]  thickness
+   !>  zone    (result) [s0, s1], -L <= s0 < s1 <= L
+   pure function neck_zone(s_star, half, h) result(zone)
+      real(dp), intent(in) :: s_star, half, h
+      real(dp) :: zone(2)
+      zone(1) = max(-half, min(s_star, half) - neck_half_width*h)
+      zone(2) = min(half, max(s_star, -half) + neck_half_width*h)
+   end function neck_zone
 
    !> NODE_DOF: global equation number of dof `which` (dof_v ... dof_w_slope)
    !> of node `node`.

@@ -6,7 +6,7 @@ module record
    use kinds, only: dp
    implicit none
    private
-   public :: run_record, run_record_init, record_pull
+   public :: run_record, run_record_init, record_pull, neck_record
    public :: run_ok, run_no_convergence, run_interrupted, run_write_failed
 
    !> run_record%status: the run went on to its end (or stopped at tearing);
@@ -14,6 +14,20 @@ module record
    !> result file could not be written.
    integer, parameter :: run_ok = 0, run_no_convergence = 2, run_interrupted = 3, &
                          run_write_failed = 4
+
+   !> The neck's refined zone (&sheet refine_neck, docs/theory.md §7.5):
+   !> refinement is 'off' (not asked for), 'zone' (the run's mesh has a zone
+   !> around the neck of a first pass on the deck's uniform mesh) or 'none'
+   !> (the uniform mesh's elements are no longer than the zone's, or the
+   !> first pass found no neck); the first pass's tearing point, element
+   !> count and assemblies; the zone [s0, s1] (mm, reference positions).
+   type :: neck_record
+      character(len=8) :: refinement = 'off'
+      logical :: coarse_torn = .false.
+      real(dp) :: coarse_tear_load = 0.0_dp, coarse_tear_s = 0.0_dp
+      real(dp) :: zone(2) = 0.0_dp
+      integer :: coarse_elements = 0, coarse_assemblies = 0
+   end type neck_record
 
    !> What the run has found so far (written to summary.txt).
    type :: run_record
@@ -57,6 +71,8 @@ module record
       real(dp) :: last_conjugate = 0.0_dp
       real(dp), allocatable :: reactions(:)      ! residual (reactions at fixed dofs), last increment
       real(dp) :: energy_pull_start(5) = 0.0_dp
+      ! the neck's refined zone and the first pass that placed it
+      type(neck_record) :: neck
    end type run_record
 
 contains

@@ -56,7 +56,9 @@ contains
       if (errs%count > 0) return
 
       h = d%thickness
-      if (d%refine_element > 0.0_dp) then
+      ! (with refine_neck the zone comes from a first pass: the main program
+      ! sets it in a copy of the deck)
+      if (d%refine_element > 0.0_dp .and. .not. d%refine_neck) then
          call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, mat, &
                          zone=h*[d%refine_from, d%refine_to, d%refine_element])
       else

@@ -180,6 +180,19 @@ contains
       call put(text, 'pull_energy_balance_error', &
                               (pull_work + de(5) - sum(de(1:4)))/max(abs(pull_work), tiny(1.0_dp)), &
                               rec%n_pull > 0 .and. pull_work > 0.0_dp)
+      ! the neck's refined zone (&sheet refine_neck, docs/theory.md §7.5)
+      call add(text, 'neck_refinement = '//trim(rec%neck%refinement))
+      call put(text, 'coarse_tearing_delta_over_h', rec%neck%coarse_tear_load/h, rec%neck%coarse_torn)
+      call put(text, 'coarse_tearing_s_over_h', rec%neck%coarse_tear_s/h, rec%neck%coarse_torn)
+      call put(text, 'neck_zone_from_over_h', rec%neck%zone(1)/h, rec%neck%refinement == 'zone')
+      call put(text, 'neck_zone_to_over_h', rec%neck%zone(2)/h, rec%neck%refinement == 'zone')
+      if (rec%neck%coarse_elements > 0) then
+         call add(text, 'coarse_elements = '//itoa(rec%neck%coarse_elements))
+         call add(text, 'coarse_assemblies = '//itoa(rec%neck%coarse_assemblies))
+      else
+         call add(text, 'coarse_elements = none')
+         call add(text, 'coarse_assemblies = none')
+      end if
       call add(text, 'increments = '//itoa(rec%increments))
       call add(text, 'newton_iterations = '//itoa(rec%newton_iterations))
       call add(text, 'cutbacks = '//itoa(rec%cutbacks))

@@ -171,14 +171,14 @@ contains
       rec%tear_s = station_position(m, k)
       rec%tear_element = element_length_at(m, rec%tear_s)
       ! on coarser elements the neck (width of order h/sqrt(12), §12.7) is
-      ! not resolved and the force's maximum comes late: 19-52% on the
+      ! not resolved and the force's maximum comes late: 18-51% on the
       ! continuum-check decks at 0.625-0.75h (docs/validation.md); the
       ! tolerance keeps a zone of exactly 0.1h (its rounded element) quiet
       if (rec%tear_element > 0.1_dp*m%thickness*(1.0_dp + 1.0e-6_dp)) then
          call warn('tearing point on elements of '//num(anint(1.0e3_dp*rec%tear_element/m%thickness)/1.0e3_dp)// &
                    'h at s = '//num(anint(1.0e2_dp*rec%tear_s/m%thickness)/1.0e2_dp)// &
                    'h: it converges on elements of 0.1h or shorter there (docs/validation.md); '// &
-                   'refine with &sheet refine_from, refine_to, refine_element', 'set_torn')
+                   'refine there (&sheet refine_neck, or refine_from, refine_to, refine_element)', 'set_torn')
       end if
    end subroutine set_torn
 

@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# neck.sh -- &sheet refine_neck (docs/theory.md §7.5) on the small deck
+# tests/decks/neck_bead_b.nml (20 elements of 3h, zone elements of 0.5h):
+#   - the first pass on the uniform mesh writes its results and summary
+#     into OUTDIR/coarse and tears there; the run proper has the zone
+#     neck_half_width = 2h either side of that neck, and its summary says
+#     so (neck_refinement = zone, the coarse tearing point, the zone);
+#   - the run proper is the run of the same deck with that zone given by
+#     hand (refine_from, refine_to): the same results to 1e-9;
+#   - uniform elements no longer than refine_element: no first pass, no
+#     zone (neck_refinement = none), the results of the deck without
+#     refine_neck;
+#   - a first pass that does not tear (a pull too short): no zone, the
+#     uniform mesh's results.
+# Usage: tests/neck.sh [path/to/drawbead]   (run from anywhere)
+set -u
+cd "$(dirname "$0")/.." || exit 2
+bin=${1:-bin/drawbead}
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+deck=tests/decks/neck_bead_b.nml
+fails=0
+value() { awk -F' = ' -v k="$2" '$1 == k { print $2 }' "$1"; }
+fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+# same KEY DIR1 DIR2: the two summaries' KEY agree to 1e-9 relative (or
+# are the same text)
+same() {
+    local a b
+    a=$(value "$2/summary.txt" "$1"); b=$(value "$3/summary.txt" "$1")
+    if [ "$a" = "$b" ]; then return 0; fi
+    awk -v a="$a" -v b="$b" 'BEGIN { d = a - b; if (d < 0) d = -d; m = (a < 0 ? -a : a);
+        if ((b < 0 ? -b : b) > m) m = (b < 0 ? -b : b); exit !(a != "none" && b != "none" && d <= 1e-9 * m) }'
+}
+# run NAME DECK: run DECK into $out/NAME; fails the test on a non-zero exit
+run() {
+    if ! "$bin" "$2" --output "$out/$1" > "$out/$1.log" 2>&1; then
+        fail "$1: exit status not 0:"; tail -5 "$out/$1.log"; return 1
+    fi
+}
+
+# 1. the first pass tears; the zone is centred on its neck
+run neck "$deck" || exit 1
+s=$out/neck/summary.txt
+c=$out/neck/coarse/summary.txt
+if [ ! -f "$c" ] || [ "$(value "$c" status)" != torn ] || [ "$(value "$c" elements)" != 20 ]; then
+    fail "neck: the first pass's summary $c: missing, not torn or not 20 elements"
+fi
+if [ "$(value "$s" neck_refinement)" != zone ] || [ "$(value "$s" coarse_elements)" != 20 ] ||
+    [ "$(value "$s" coarse_tearing_delta_over_h)" != "$(value "$c" tearing_delta_over_h)" ] ||
+    [ "$(value "$s" coarse_tearing_s_over_h)" != "$(value "$c" tearing_s_over_h)" ] ||
+    [ "$(value "$s" coarse_assemblies)" != "$(value "$c" assemblies)" ]; then
+    fail "neck: the summary does not report the first pass:"; grep -E '^(neck|coarse)' "$s"
+fi
+from=$(value "$s" neck_zone_from_over_h); to=$(value "$s" neck_zone_to_over_h)
+star=$(value "$c" tearing_s_over_h)
+if ! awk -v a="$from" -v b="$to" -v s="$star" 'BEGIN { e = a - (s - 2); f = b - (s + 2);
+        exit !(e * e < 1e-24 && f * f < 1e-24) }'; then
+    fail "neck: zone [$from, $to] is not the first pass's neck $star -+ 2h"
+fi
+# 16 of 3h outside the zone (rounded to whole elements), 8 of 0.5h in it
+if [ "$(value "$s" elements)" != 26 ] || [ "$(value "$s" status)" != torn ]; then
+    fail "neck: expected a torn run on 26 elements, got $(value "$s" status) on $(value "$s" elements)"
+fi
+echo "ok   neck: first pass torn at s/h = $star, zone [$from, $to], run proper torn at" \
+    "delta/h = $(value "$s" tearing_delta_over_h)"
+
+# 2. the same zone by hand: the same results
+sed -e "s/refine_neck = .true., refine_element = 0.5/refine_from = $from, refine_to = $to, refine_element = 0.5/" \
+    "$deck" > "$out/hand.nml"
+if run hand "$out/hand.nml"; then
+    for k in status tearing_delta_over_h tearing_s_over_h lock_force_over_Eh peak_force_over_Eh elements; do
+        same "$k" "$out/neck" "$out/hand" || fail "neck against the zone by hand: $k differs:" \
+            "$(value "$s" "$k") against $(value "$out/hand/summary.txt" "$k")"
+    done
+    if [ "$(value "$out/hand/summary.txt" neck_refinement)" != off ]; then
+        fail "hand: neck_refinement is not off"
+    fi
+    echo "ok   neck: the results of the zone given by hand"
+fi
+
+# 3. uniform elements of 3h against refine_element = 3.5: nothing to refine
+sed -e 's/refine_element = 0.5/refine_element = 3.5/' "$deck" > "$out/fine.nml"
+sed -e 's/refine_neck = .true., refine_element = 0.5//' "$deck" > "$out/plain.nml"
+if run fine "$out/fine.nml" && run plain "$out/plain.nml"; then
+    if [ "$(value "$out/fine/summary.txt" neck_refinement)" != none ] || [ -e "$out/fine/coarse" ]; then
+        fail "fine: expected neck_refinement = none and no first pass"
+    fi
+    for k in status tearing_delta_over_h peak_force_over_Eh elements; do
+        same "$k" "$out/fine" "$out/plain" || fail "fine against plain: $k differs"
+    done
+    echo "ok   neck: elements no longer than refine_element: no first pass, the uniform mesh's results"
+fi
+
+# 4. a pull of 1h: the first pass (1.3h) does not tear, the mesh stays uniform
+sed -e 's/pull_distance = 3.81/pull_distance = 0.762/' "$deck" > "$out/short.nml"
+sed -e 's/pull_distance = 3.81/pull_distance = 0.762/' "$out/plain.nml" > "$out/short_plain.nml"
+if run short "$out/short.nml" && run short_plain "$out/short_plain.nml"; then
+    if [ "$(value "$out/short/summary.txt" neck_refinement)" != none ] ||
+        [ "$(value "$out/short/coarse/summary.txt" status)" != completed ] ||
+        [ "$(value "$out/short/summary.txt" coarse_tearing_delta_over_h)" != none ]; then
+        fail "short: expected neck_refinement = none after a first pass without tearing"
+    fi
+    for k in status final_force_over_Eh peak_force_over_Eh elements; do
+        same "$k" "$out/short" "$out/short_plain" || fail "short against plain: $k differs"
+    done
+    echo "ok   neck: a first pass without a neck: no zone, the uniform mesh's results"
+fi
+exit $((fails > 0))
