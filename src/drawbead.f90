@@ -133,9 +133,10 @@ contains
    end subroutine run_case
 
    !> PLACE_NECK_ZONE: &sheet refine_neck (docs/theory.md §7.5).  A first
-   !> pass runs the deck on its uniform mesh into <output_dir>/coarse,
+   !> pass runs the deck on its uniform mesh into <output_dir>/coarse (the
+   !> output directory cleared of an earlier run first),
    !> stopped at its tearing point and pulled up to coarse_pull times the
-   !> deck's pull (the uniform mesh's neck comes up to a fifth later than
+   !> deck's pull (the uniform mesh's neck comes up to a third later than
    !> the resolved one); the model is then rebuilt with a zone of elements
    !> of refine_element around that neck (mesh's neck_zone).  Without a
    !> neck in the first pass, or when the uniform elements are no longer
@@ -150,11 +151,13 @@ contains
       type(model_type), intent(inout) :: m
       type(controls_type), intent(in) :: ctl
       type(neck_record), intent(out) :: neck
-      real(dp), parameter :: coarse_pull = 1.3_dp
+      real(dp), parameter :: coarse_pull = 1.5_dp
       type(model_type) :: m1
       type(controls_type) :: ctl1, ctl_unused
-      type(state_type) :: s1
-      type(run_record) :: rec1
+      type(state_type) :: s1, s0
+      type(run_record) :: rec1, rec0
+      type(output_files) :: out
+      character(len=300) :: errmsg
       type(deck_type) :: d2
       type(error_list) :: errs2
       real(dp) :: h, t0, t1
@@ -167,6 +170,15 @@ contains
             'refine_element: no zone'
          return
       end if
+      ! the output directory belongs to this run from now on: an earlier
+      ! run's results there are removed, and summary.txt says running
+      call open_outputs(trim(ctl%output_dir), trim(ctl%title), out, errmsg)
+      if (len_trim(errmsg) > 0) then
+         call print_error('deck '''//trim(d%deck_file)//''', group &control, '// &
+                          'variable output_dir: '//trim(errmsg))
+         call finish('bad input', exit_input)
+      end if
+      call close_outputs(out)
       m1 = m
       m1%pull_distance = coarse_pull*m%pull_distance
       ctl1 = ctl
@@ -183,8 +195,18 @@ contains
          call print_error('cannot write '//iomsg1, 'place_neck_zone')
          call finish('a result file could not be written', exit_write)
       end if
+      neck%coarse_elements = m%n_el
+      neck%coarse_assemblies = rec1%assemblies
       select case (rec1%status)
       case (run_interrupted)
+         ! the run proper has not started: its summary says so (the flat
+         ! sheet, no increment), the first pass's results are in coarse/
+         call state_init(m, s0)
+         call run_record_init(rec0)
+         rec0%status = run_interrupted
+         rec0%message = rec1%message
+         rec0%neck = neck
+         call write_summary(trim(ctl%output_dir)//'/summary.txt', m, s0, ctl, rec0, t1 - t0, ios1, iomsg1)
          call print_error(trim(rec1%message), 'run_phase')
          call finish('interrupted in the first pass of refine_neck (results so far kept in '// &
                      trim(ctl1%output_dir)//')', exit_interrupted)
@@ -192,8 +214,6 @@ contains
          call print_error(trim(rec1%message), 'output')
          call finish('a result file could not be written', exit_write)
       end select
-      neck%coarse_elements = m%n_el
-      neck%coarse_assemblies = rec1%assemblies
       neck%coarse_torn = rec1%torn .and. rec1%tear_phase == 'pull'
       if (.not. neck%coarse_torn) then
          write (output_unit, '(a)') '# drawbead: refine_neck: no neck in the first pass: '// &

@@ -11,7 +11,10 @@
 #     zone (neck_refinement = none), the results of the deck without
 #     refine_neck;
 #   - a first pass that does not tear (a pull too short): no zone, the
-#     uniform mesh's results.
+#     uniform mesh's results;
+#   - SIGTERM in the first pass: exit 4, the run's summary.txt says
+#     interrupted (replacing an earlier run's), and so does the first
+#     pass's.
 # Usage: tests/neck.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "$0")/.." || exit 2
@@ -104,5 +107,29 @@ if run short "$out/short.nml" && run short_plain "$out/short_plain.nml"; then
         same "$k" "$out/short" "$out/short_plain" || fail "short against plain: $k differs"
     done
     echo "ok   neck: a first pass without a neck: no zone, the uniform mesh's results"
+fi
+# 5. SIGTERM in the first pass: exit 4; summary.txt of the run says
+# interrupted (no increment of the run proper) in place of an earlier
+# run's, whose other results are gone; the first pass's own summary too
+sed -e 's/^&sheet$/\&sheet\n   refine_neck = .true./' input/cc_fig5a_beadA_steel.nml > "$out/term.nml"
+mkdir -p "$out/term"
+printf 'status = completed\n' > "$out/term/summary.txt"
+printf 'stale\n' > "$out/term/snapshots.dat"
+"$bin" "$out/term.nml" -o "$out/term" > "$out/term.log" 2>&1 &
+pid=$!
+for _ in $(seq 200); do
+    grep -q 'increments = *[1-9]' "$out/term/coarse/summary.txt" 2>/dev/null && break
+    sleep 0.01
+done
+kill -TERM "$pid"
+wait "$pid"
+status=$?
+if ((status == 4)) && [ "$(value "$out/term/summary.txt" status)" = interrupted ] &&
+    [ "$(value "$out/term/summary.txt" increments)" = 0 ] &&
+    [ "$(value "$out/term/coarse/summary.txt" status)" = interrupted ] && [ ! -e "$out/term/snapshots.dat" ]; then
+    echo "ok   neck: SIGTERM in the first pass: exit 4, both summaries say interrupted, no stale result"
+else
+    fail "neck: SIGTERM in the first pass: exit $status, summary status $(value "$out/term/summary.txt" status)," \
+        "first pass $(value "$out/term/coarse/summary.txt" status); snapshots.dat $(ls "$out/term/snapshots.dat" 2>&1)"
 fi
 exit $((fails > 0))
