@@ -10,7 +10,8 @@
 #                  directory, removed at the end)
 #   --figures DIR  also draw, per case, the continuum and the program with
 #                  both sections together: DIR/continuum_<case>_lock.png
-#                  (punch force), _pull.png (restraining force) and
+#                  (punch force), _pull.png (restraining force, with the
+#                  contact section's run with refine_neck too) and
 #                  _strain.png (mid-surface strain after locking and after
 #                  pulling); needs gnuplot
 # Prints a markdown table: the continuum's value and the program's two, each
@@ -71,10 +72,12 @@ if [[ -n $figures ]]; then
             "$none/lock.dat::paper section::lw 2 lc rgb '#999999'" \
             "$contact/lock.dat::contact section::lw 2 lc rgb '#0072B2'" \
             "$figures/continuum_${case}_lock.png" >/dev/null
+        neck=$work/${case}_neck/run
         gnuplot -c scripts/plot_pull.gp --title="$case: restraining force" --key='bottom right' \
             "${cdir}pull.dat::continuum::lw 2 dt 2 lc rgb '#D55E00'" \
             "$none/pull.dat::paper section::lw 2 lc rgb '#999999'" \
             "$contact/pull.dat::contact section::lw 2 lc rgb '#0072B2'" \
+            "$neck/pull.dat::contact section, refine_neck::lw 2 dt 3 lc rgb '#009E73'" \
             "$figures/continuum_${case}_pull.png" >/dev/null
         plots=()
         for phase in lock pull; do
@@ -126,6 +129,27 @@ for cdir in sorted(glob.glob("docs/validation/continuum/cc_*/")):
             out.append('%.4g' % x if x is not None else 'none')
             out.append('%.3f' % (x / cv) if x is not None and cv else '')
         print('| %s | %s | %s |' % (case, label, ' | '.join(out)))
+    # after the largest force: the continuum's neck takes the force down
+    # within about 1h, the shell's drawing neck does not
+    def past(pull):
+        rows = [l.split() for l in open(pull) if l.strip() and not l.startswith('#')]
+        d = [float(r[0]) for r in rows]; f = [float(r[2]) for r in rows]
+        if not f:
+            return None
+        i = max(range(len(f)), key=lambda k: f[k])
+        t = d[i] + 1.0
+        for k in range(i + 1, len(d)):
+            if d[k] >= t:
+                w = (t - d[k - 1]) / (d[k] - d[k - 1])
+                return (f[k - 1] + w * (f[k] - f[k - 1])) / f[i]
+        return None
+    cv = past(os.path.join(cdir, 'pull.dat'))
+    vals = [past(os.path.join(work, case + '_' + v, 'run', 'pull.dat')) for v in ('none', 'neck')]
+    out = ['%.3f' % cv if cv is not None else 'none']
+    for x in vals:
+        out += ['%.3f' % x if x is not None else 'none', '']
+    print('| %s | restraining force 1h past its largest / the largest (contact section: with refine_neck) | %s |'
+          % (case, ' | '.join(out)))
     tear = ['%.3g' % float(s[v]['tearing_delta_over_h']) if s[v].get('tearing_delta_over_h', 'none') != 'none'
             else 'none' for v in ('none', 'contact')]
     cr = ['%.3g' % float(s[v]['delta_cr_over_h']) if s[v].get('delta_cr_over_h', 'none') != 'none'
