@@ -6,7 +6,7 @@
 !> below and docs/user-guide.md.
 program drawbead
    use kinds, only: dp, output_unit, error_unit
-   use errors, only: error_list, report_errors, print_error, exit_ok, exit_input, &
+   use errors, only: error_list, report_errors, print_error, warn, exit_ok, exit_input, &
                      exit_noconvergence, exit_write, exit_interrupted
    use deck, only: deck_type
    use deck_reader, only: read_deck, echo_deck, list_variables
@@ -17,7 +17,8 @@ program drawbead
                      run_write_failed, neck_record
    use mesh, only: neck_zone
    use analysis, only: run_phase
-   use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools, &
+   use text, only: itoa
+   use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools, remove_results, &
                      open_snapshots
    use summary, only: write_summary
    use os, only: install_stop_handlers
@@ -35,6 +36,7 @@ program drawbead
    type(state_type) :: s
    type(run_record) :: rec
    type(neck_record) :: neck
+   character(len=300) :: errmsg
    character(len=path_max) :: path, out_override
    character(len=:), allocatable :: iomsg
    integer :: ios
@@ -62,8 +64,17 @@ program drawbead
 
    ! &sheet refine_neck: a first pass on the deck's uniform mesh finds the
    ! neck, and the run proper refines the mesh around it (docs/theory.md §7.5)
-   if (d%refine_neck) call place_neck_zone(d, m, ctl, neck)
-   call run_case(m, ctl, trim(d%deck_file), trim(ctl%output_dir), neck, s, rec)
+   if (d%refine_neck) then
+      call place_neck_zone(d, m, ctl, neck)
+   else
+      call clear_first_pass(ctl)
+   end if
+   call run_case(m, ctl, trim(ctl%output_dir), neck, s, rec, errmsg)
+   if (len_trim(errmsg) > 0) then
+      call print_error('deck '''//trim(d%deck_file)//''', group &control, '// &
+                       'variable output_dir: '//trim(errmsg))
+      call finish('bad input', exit_input)
+   end if
    call cpu_time(t_end)
    call write_summary(trim(ctl%output_dir)//'/summary.txt', m, s, ctl, rec, t_end - t_start, ios, iomsg)
    if (ios /= 0 .and. rec%status /= run_write_failed) then
@@ -90,31 +101,28 @@ contains
    !> in dir (all but summary.txt, which the caller writes).
    !>  m          [in]  the model
    !>  ctl        [in]  the controls
-   !>  deck_file  [in]  the deck's name, for an error message
    !>  dir        [in]  the output directory
    !>  neck       [in]  the neck's refined zone, for the summary
    !>  s          [out] the state at the end
    !>  rec        [out] what the run found
-   subroutine run_case(m, ctl, deck_file, dir, neck, s, rec)
+   !>  errmsg     [out] '' or why the output directory could not be set up
+   !>                   (nothing was run then)
+   subroutine run_case(m, ctl, dir, neck, s, rec, errmsg)
       type(model_type), intent(in) :: m
       type(controls_type), intent(in) :: ctl
-      character(len=*), intent(in) :: deck_file, dir
+      character(len=*), intent(in) :: dir
       type(neck_record), intent(in) :: neck
       type(state_type), intent(out) :: s
       type(run_record), intent(out) :: rec
+      character(len=*), intent(out) :: errmsg
       type(output_files) :: out
-      character(len=300) :: errmsg
       call state_init(m, s)
       call run_record_init(rec)
       rec%neck = neck
       call open_outputs(dir, trim(ctl%title), out, errmsg)
       if (len_trim(errmsg) == 0 .and. ctl%snapshot_every_over_h > 0.0_dp) &
          call open_snapshots(out, trim(ctl%title), ctl%snapshot_every_over_h, errmsg)
-      if (len_trim(errmsg) > 0) then
-         call print_error('deck '''//deck_file//''', group &control, '// &
-                          'variable output_dir: '//trim(errmsg))
-         call finish('bad input', exit_input)
-      end if
+      if (len_trim(errmsg) > 0) return
       if (m%has_tools .and. m%lock_depth > 0.0_dp) then
          call run_phase(m, ctl, s, 'lock', 0.0_dp, m%lock_depth, out, rec)
       end if
@@ -134,13 +142,15 @@ contains
 
    !> PLACE_NECK_ZONE: &sheet refine_neck (docs/theory.md §7.5).  A first
    !> pass runs the deck on its uniform mesh into <output_dir>/coarse (the
-   !> output directory cleared of an earlier run first),
-   !> stopped at its tearing point and pulled up to coarse_pull times the
-   !> deck's pull (the uniform mesh's neck comes up to a third later than
-   !> the resolved one); the model is then rebuilt with a zone of elements
-   !> of refine_element around that neck (mesh's neck_zone).  Without a
-   !> neck in the first pass, or when the uniform elements are no longer
-   !> than refine_element, the model stays as it is.
+   !> output directory cleared of an earlier run first), stopped at its
+   !> tearing point and pulled up to coarse_pull times the deck's pull (on
+   !> 80 elements the neck comes up to a third later than the resolved
+   !> one); the model is then rebuilt with a zone of elements of
+   !> refine_element around that neck (mesh's neck_zone).  Without a neck
+   !> in the first pass, or when the uniform elements are no longer than
+   !> refine_element, the model stays as it is.  A first pass that stops
+   !> early (SIGTERM, a failed write, no convergence within the deck's
+   !> pull) ends the program with the run's summary.txt saying so.
    !>  d     [in]     the deck
    !>  m     [in,out] the model of the deck's uniform mesh; on return, the
    !>                 model of the run proper
@@ -152,15 +162,16 @@ contains
       type(controls_type), intent(in) :: ctl
       type(neck_record), intent(out) :: neck
       real(dp), parameter :: coarse_pull = 1.5_dp
+      character(len=*), parameter :: sub = '/coarse'
       type(model_type) :: m1
       type(controls_type) :: ctl1, ctl_unused
-      type(state_type) :: s1, s0
-      type(run_record) :: rec1, rec0
+      type(state_type) :: s1
+      type(run_record) :: rec1
       type(output_files) :: out
       character(len=300) :: errmsg
       type(deck_type) :: d2
       type(error_list) :: errs2
-      real(dp) :: h, t0, t1
+      real(dp) :: h, t0, t1, last_pull
       integer :: ios1
       character(len=:), allocatable :: iomsg1
       h = m%thickness
@@ -168,7 +179,14 @@ contains
       if (m%x(2) - m%x(1) <= d%refine_element*h*(1.0_dp + 1.0e-9_dp)) then
          write (output_unit, '(a)') '# drawbead: refine_neck: the uniform elements are no longer than '// &
             'refine_element: no zone'
+         call clear_first_pass(ctl)
          return
+      end if
+      if (len_trim(ctl%output_dir) + len(sub) > len(ctl1%output_dir)) then
+         call print_error('deck '''//trim(d%deck_file)//''', group &control, variable output_dir: '// &
+                          'longer than the program takes with refine_neck (at most '// &
+                          itoa(len(ctl1%output_dir) - len(sub))//' characters, for its '//sub(2:)//' folder)')
+         call finish('bad input', exit_input)
       end if
       ! the output directory belongs to this run from now on: an earlier
       ! run's results there are removed, and summary.txt says running
@@ -183,41 +201,42 @@ contains
       m1%pull_distance = coarse_pull*m%pull_distance
       ctl1 = ctl
       ctl1%stop_at_localization = .true.
-      ctl1%output_dir = trim(ctl%output_dir)//'/coarse'
+      ctl1%output_dir = trim(ctl%output_dir)//sub
+      neck%refinement = 'first'
+      neck%coarse_elements = m%n_el
       write (output_unit, '(a,i0,a)') '# drawbead: refine_neck: first pass on the uniform mesh (', &
          m%n_el, ' elements) into '//trim(ctl1%output_dir)
       flush (output_unit)
       call cpu_time(t0)
-      call run_case(m1, ctl1, trim(d%deck_file), trim(ctl1%output_dir), neck, s1, rec1)
+      call run_case(m1, ctl1, trim(ctl1%output_dir), neck, s1, rec1, errmsg)
+      if (len_trim(errmsg) > 0) call stop_in_first_pass(m, ctl, neck, run_write_failed, trim(errmsg), 0)
       call cpu_time(t1)
-      call write_summary(trim(ctl1%output_dir)//'/summary.txt', m1, s1, ctl1, rec1, t1 - t0, ios1, iomsg1)
-      if (ios1 /= 0) then
-         call print_error('cannot write '//iomsg1, 'place_neck_zone')
-         call finish('a result file could not be written', exit_write)
-      end if
-      neck%coarse_elements = m%n_el
       neck%coarse_assemblies = rec1%assemblies
+      rec1%neck = neck
+      call write_summary(trim(ctl1%output_dir)//'/summary.txt', m1, s1, ctl1, rec1, t1 - t0, ios1, iomsg1)
+      if (ios1 /= 0) call stop_in_first_pass(m, ctl, neck, run_write_failed, 'cannot write '//iomsg1, rec1%assemblies)
       select case (rec1%status)
-      case (run_interrupted)
-         ! the run proper has not started: its summary says so (the flat
-         ! sheet, no increment), the first pass's results are in coarse/
-         call state_init(m, s0)
-         call run_record_init(rec0)
-         rec0%status = run_interrupted
-         rec0%message = rec1%message
-         rec0%neck = neck
-         call write_summary(trim(ctl%output_dir)//'/summary.txt', m, s0, ctl, rec0, t1 - t0, ios1, iomsg1)
-         call print_error(trim(rec1%message), 'run_phase')
-         call finish('interrupted in the first pass of refine_neck (results so far kept in '// &
-                     trim(ctl1%output_dir)//')', exit_interrupted)
-      case (run_write_failed)
-         call print_error(trim(rec1%message), 'output')
-         call finish('a result file could not be written', exit_write)
+      case (run_interrupted, run_write_failed)
+         call stop_in_first_pass(m, ctl, neck, rec1%status, trim(rec1%message), rec1%assemblies)
+      case (run_no_convergence)
+         ! past the deck's own pull the first pass only looked for a late
+         ! neck; before it, the deck fails on its uniform mesh
+         last_pull = -1.0_dp
+         if (rec1%n_pull > 0) last_pull = rec1%pull_delta(rec1%n_pull)
+         if (.not. rec1%torn .and. last_pull < m%pull_distance) &
+            call stop_in_first_pass(m, ctl, neck, run_no_convergence, trim(rec1%message), rec1%assemblies)
       end select
       neck%coarse_torn = rec1%torn .and. rec1%tear_phase == 'pull'
       if (.not. neck%coarse_torn) then
-         write (output_unit, '(a)') '# drawbead: refine_neck: no neck in the first pass: '// &
-            'the run keeps the uniform mesh'
+         neck%refinement = 'none'
+         if (rec1%status == run_no_convergence) then
+            call warn('no convergence in the first pass past the deck''s pull ('// &
+                      trim(rec1%message)//'): no neck found within the pull; the run keeps the uniform mesh', &
+                      'place_neck_zone')
+         else
+            write (output_unit, '(a)') '# drawbead: refine_neck: no neck in the first pass: '// &
+               'the run keeps the uniform mesh'
+         end if
          return
       end if
       neck%coarse_tear_load = rec1%tear_load
@@ -237,6 +256,62 @@ contains
          neck%zone(1)/h, ' to ', neck%zone(2)/h, ' (', m%n_el, ' elements)'
       flush (output_unit)
    end subroutine place_neck_zone
+
+   !> STOP_IN_FIRST_PASS: the first pass of refine_neck stopped early: the
+   !> run's own summary.txt says so (the flat sheet, no increment of the
+   !> run proper, neck_refinement = first), then the program ends with the
+   !> status's exit code.
+   !>  m           [in] the model of the deck's uniform mesh
+   !>  ctl         [in] the controls of the run proper
+   !>  neck        [in] the neck record so far
+   !>  status      [in] run_interrupted, run_write_failed or run_no_convergence
+   !>  message     [in] why
+   !>  assemblies  [in] the first pass's assemblies
+   subroutine stop_in_first_pass(m, ctl, neck, status, message, assemblies)
+      type(model_type), intent(in) :: m
+      type(controls_type), intent(in) :: ctl
+      type(neck_record), intent(in) :: neck
+      integer, intent(in) :: status, assemblies
+      character(len=*), intent(in) :: message
+      type(state_type) :: s0
+      type(run_record) :: rec0
+      integer :: ios0
+      character(len=:), allocatable :: iomsg0
+      character(len=:), allocatable :: kept
+      call state_init(m, s0)
+      call run_record_init(rec0)
+      rec0%status = status
+      rec0%message = message
+      rec0%neck = neck
+      rec0%neck%coarse_assemblies = assemblies
+      call write_summary(trim(ctl%output_dir)//'/summary.txt', m, s0, ctl, rec0, 0.0_dp, ios0, iomsg0)
+      kept = ' (results so far kept in '//trim(ctl%output_dir)//'/coarse)'
+      select case (status)
+      case (run_interrupted)
+         call print_error(message, 'run_phase')
+         call finish('interrupted in the first pass of refine_neck'//kept, exit_interrupted)
+      case (run_no_convergence)
+         call print_error(message, 'run_phase')
+         call finish('no convergence in the first pass of refine_neck'//kept, exit_noconvergence)
+      case default
+         call print_error(message, 'output')
+         call finish('a result file of the first pass of refine_neck could not be written', exit_write)
+      end select
+   end subroutine stop_in_first_pass
+
+   !> CLEAR_FIRST_PASS: without a first pass, the results of an earlier
+   !> run's first pass (<output_dir>/coarse) are removed, so that none is
+   !> left beside this run's.
+   !>  ctl  [in]  the controls (output_dir)
+   subroutine clear_first_pass(ctl)
+      type(controls_type), intent(in) :: ctl
+      character(len=300) :: errmsg
+      call remove_results(trim(ctl%output_dir)//'/coarse', errmsg)
+      if (len_trim(errmsg) > 0) then
+         call print_error(trim(errmsg), 'clear_first_pass')
+         call finish('a result file could not be written', exit_write)
+      end if
+   end subroutine clear_first_pass
 
    !> PARSE_COMMAND_LINE: exactly one deck and at most one -o DIR; --help,
    !> --version and --list-variables answer and stop.  Anything else is an

@@ -114,8 +114,8 @@ contains
    !> NECK_ZONE: the refined zone of &sheet refine_neck (docs/theory.md
    !> §7.5): neck_half_width h either side of the neck found on the uniform
    !> mesh, cut at the sheet's ends.  On the uniform mesh of the
-   !> continuum-check decks the neck's station lies 0.4h before the one the
-   !> refined mesh finds, well inside the zone.
+   !> continuum-check decks the neck's station lies within 0.5h of the one
+   !> the refined mesh finds, well inside the zone.
    !>  s_star  [in]  reference position of the neck on the uniform mesh
    !>  half    [in]  half length L
    !>  h       [in]  thickness

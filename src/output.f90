@@ -26,7 +26,7 @@ module output
    private
    public :: output_files, open_outputs, write_row, write_strains, close_outputs, fmt_row, &
              write_tools, open_snapshots, write_snapshot, write_progress, result_files, &
-             write_text_file
+             write_text_file, remove_results
 
    character(len=*), parameter :: fmt_row = '(*(1x,es24.16e3))'
    character(len=1), parameter :: nl = achar(10)
@@ -108,6 +108,28 @@ contains
                ' lift = vertical force of the sheet opening the binder (on the upper tool)'//nl)
       if (out%failed) errmsg = out%failure
    end subroutine open_outputs
+
+   !> REMOVE_RESULTS: remove the result files (result_files) of an earlier
+   !> run from a directory, if it has any; a directory that does not exist
+   !> (or is not one) has none.
+   !>  dir     [in]  the directory
+   !>  errmsg  [out] '' or '<file>: <the system's reason>' for a file that
+   !>                exists and could not be removed
+   subroutine remove_results(dir, errmsg)
+      character(len=*), intent(in) :: dir
+      character(len=*), intent(out) :: errmsg
+      integer, parameter :: enotdir = 20
+      character(len=:), allocatable :: why
+      integer :: stat, k
+      errmsg = ''
+      do k = 1, size(result_files)
+         call file_remove(dir//'/'//trim(result_files(k)), stat, why)
+         if (stat /= 0 .and. stat /= enotdir) then
+            errmsg = 'cannot remove '//dir//'/'//trim(result_files(k))//' of an earlier run: '//why
+            return
+         end if
+      end do
+   end subroutine remove_results
 
    !> OPEN_NEW: create a result file of the run's directory.
    !>  out   [in,out] the run's files (a failure is recorded)

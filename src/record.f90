@@ -16,11 +16,12 @@ module record
                          run_write_failed = 4
 
    !> The neck's refined zone (&sheet refine_neck, docs/theory.md §7.5):
-   !> refinement is 'off' (not asked for), 'zone' (the run's mesh has a zone
-   !> around the neck of a first pass on the deck's uniform mesh) or 'none'
-   !> (the uniform mesh's elements are no longer than the zone's, or the
-   !> first pass found no neck); the first pass's tearing point, element
-   !> count and assemblies; the zone [s0, s1] (mm, reference positions).
+   !> refinement is 'off' (not asked for), 'first' (this is the first pass
+   !> on the deck's uniform mesh, or the run stopped in it), 'zone' (the
+   !> run's mesh has a zone around the first pass's neck) or 'none' (the
+   !> uniform mesh's elements are no longer than the zone's, or the first
+   !> pass found no neck); the first pass's tearing point, element count
+   !> and assemblies; the zone [s0, s1] (mm, reference positions).
    type :: neck_record
       character(len=8) :: refinement = 'off'
       logical :: coarse_torn = .false.

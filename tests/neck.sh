@@ -7,14 +7,16 @@
 #     so (neck_refinement = zone, the coarse tearing point, the zone);
 #   - the run proper is the run of the same deck with that zone given by
 #     hand (refine_from, refine_to): the same results to 1e-9;
-#   - uniform elements no longer than refine_element: no first pass, no
-#     zone (neck_refinement = none), the results of the deck without
-#     refine_neck;
+#   - uniform elements no longer than refine_element (60 elements of 1h,
+#     refine_element = 1): no first pass, no zone (neck_refinement = none),
+#     the results of the deck without refine_neck;
 #   - a first pass that does not tear (a pull too short): no zone, the
 #     uniform mesh's results;
 #   - SIGTERM in the first pass: exit 4, the run's summary.txt says
 #     interrupted (replacing an earlier run's), and so does the first
-#     pass's.
+#     pass's; a failed write in it: exit 3, write_failed; no convergence
+#     in it within the deck's pull: exit 2, no_convergence;
+#   - a run without refine_neck removes an earlier run's first pass.
 # Usage: tests/neck.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "$0")/.." || exit 2
@@ -81,20 +83,23 @@ if run hand "$out/hand.nml"; then
     echo "ok   neck: the results of the zone given by hand"
 fi
 
-# 3. uniform elements of 3h against refine_element = 3.5: nothing to refine
-sed -e 's/refine_element = 0.5/refine_element = 3.5/' "$deck" > "$out/fine.nml"
+# 3. uniform elements of 1h (60 elements) against refine_element = 1:
+# nothing to refine
+sed -e 's/refine_element = 0.5/refine_element = 1.0/' -e 's/n_elements = 20/n_elements = 60/' "$deck" > "$out/fine.nml"
+sed -e 's/refine_neck = .true., refine_element = 0.5//' -e 's/n_elements = 20/n_elements = 60/' "$deck" \
+    > "$out/plain60.nml"
 sed -e 's/refine_neck = .true., refine_element = 0.5//' "$deck" > "$out/plain.nml"
-if run fine "$out/fine.nml" && run plain "$out/plain.nml"; then
+if run fine "$out/fine.nml" && run plain60 "$out/plain60.nml"; then
     if [ "$(value "$out/fine/summary.txt" neck_refinement)" != none ] || [ -e "$out/fine/coarse" ]; then
         fail "fine: expected neck_refinement = none and no first pass"
     fi
     for k in status tearing_delta_over_h peak_force_over_Eh elements; do
-        same "$k" "$out/fine" "$out/plain" || fail "fine against plain: $k differs"
+        same "$k" "$out/fine" "$out/plain60" || fail "fine against plain: $k differs"
     done
     echo "ok   neck: elements no longer than refine_element: no first pass, the uniform mesh's results"
 fi
 
-# 4. a pull of 1h: the first pass (1.3h) does not tear, the mesh stays uniform
+# 4. a pull of 1h: the first pass (1.5h) does not tear, the mesh stays uniform
 sed -e 's/pull_distance = 3.81/pull_distance = 0.762/' "$deck" > "$out/short.nml"
 sed -e 's/pull_distance = 3.81/pull_distance = 0.762/' "$out/plain.nml" > "$out/short_plain.nml"
 if run short "$out/short.nml" && run short_plain "$out/short_plain.nml"; then
@@ -131,5 +136,41 @@ if ((status == 4)) && [ "$(value "$out/term/summary.txt" status)" = interrupted 
 else
     fail "neck: SIGTERM in the first pass: exit $status, summary status $(value "$out/term/summary.txt" status)," \
         "first pass $(value "$out/term/coarse/summary.txt" status); snapshots.dat $(ls "$out/term/snapshots.dat" 2>&1)"
+fi
+# 6. a run without refine_neck into a directory with an earlier run's
+# first pass: those results are removed too
+mkdir -p "$out/stale/coarse"
+printf 'status = torn\n' > "$out/stale/coarse/summary.txt"
+printf 'stale\n' > "$out/stale/coarse/pull.dat"
+if run stale "$out/plain.nml"; then
+    if [ -e "$out/stale/coarse/summary.txt" ] || [ -e "$out/stale/coarse/pull.dat" ]; then
+        fail "stale: an earlier first pass's results were left in coarse/"
+    else
+        echo "ok   neck: an earlier run's first pass is removed by a run without it"
+    fi
+fi
+
+# 7. a write that fails in the first pass (file-size limit): exit 3, and
+# the run's summary.txt says write_failed, not running
+(ulimit -f 8; "$bin" "$deck" -o "$out/full" > "$out/full.log" 2>&1)
+status=$?
+if ((status == 3)) && [ "$(value "$out/full/summary.txt" status)" = write_failed ] &&
+    [ "$(value "$out/full/summary.txt" neck_refinement)" = first ]; then
+    echo "ok   neck: a failed write in the first pass: exit 3, summary.txt says write_failed"
+else
+    fail "neck: a failed write in the first pass: exit $status, status $(value "$out/full/summary.txt" status)"
+fi
+
+# 8. no convergence in the first pass within the deck's pull (2 Newton
+# iterations): exit 2, both summaries say no_convergence
+sed -e 's/^&loading$/\&loading\n   max_iterations = 2/' "$deck" > "$out/noconv.nml"
+"$bin" "$out/noconv.nml" -o "$out/noconv" > "$out/noconv.log" 2>&1
+status=$?
+if ((status == 2)) && [ "$(value "$out/noconv/summary.txt" status)" = no_convergence ] &&
+    [ "$(value "$out/noconv/coarse/summary.txt" status)" = no_convergence ] &&
+    [ "$(value "$out/noconv/summary.txt" neck_refinement)" = first ]; then
+    echo "ok   neck: no convergence in the first pass: exit 2, both summaries say no_convergence"
+else
+    fail "neck: no convergence in the first pass: exit $status, status $(value "$out/noconv/summary.txt" status)"
 fi
 exit $((fails > 0))
