@@ -375,6 +375,25 @@ def gen_contact_cost(ctx):
     return lambda raw: out
 
 
+def gen_neck_cost(ctx):
+    """docs/performance.md: the clamped steel continuum-check decks stopped
+    at the tearing point, on their uniform mesh and with refine_neck
+    (neck_decks), 1 and 2 threads, three runs each, scripts/bench.sh
+    --markdown --no-scaling, verbatim."""
+    plain = []
+    pdir = os.path.join(ctx.tmp, "plain_decks")
+    os.makedirs(pdir, exist_ok=True)
+    for deck in NECK_DECKS:
+        copy = os.path.join(pdir, os.path.basename(deck))
+        with open(copy, "w") as out:
+            out.write(read_doc(deck).replace("stop_at_localization = .false.", "stop_at_localization = .true."))
+        plain.append(copy)
+    decks = [d for pair in zip(plain, neck_decks(ctx, "neck_cost_decks")) for d in pair]
+    out = script_output(ctx, ["scripts/bench.sh", "--markdown", "-n", "3", "--no-scaling",
+                              "--keep", os.path.join(ctx.tmp, "neck_cost")] + decks)
+    return lambda raw: out
+
+
 GENERATORS = {
     "readme_example": ("README.md", gen_readme_example, "bin/drawbead on input/fig5a_beadA_steel.nml"),
     "paper_table": ("docs/validation.md", gen_paper_table, "every input/fig*.nml and strip_tension.nml"),
@@ -397,9 +416,12 @@ GENERATORS = {
     "contact_cost": ("docs/performance.md", gen_contact_cost,
                      "scripts/bench.sh on every input/fig*.nml and its copy with the contact section"
                      " (not checkable)"),
+    "neck_cost": ("docs/performance.md", gen_neck_cost,
+                  "scripts/bench.sh on the clamped cc_ steel decks stopped at tearing, uniform and with refine_neck"
+                  " (not checkable)"),
     "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5: 1 and 2 threads, scaling (not checkable)"),
 }
-UNCHECKABLE = {"bench", "contact_cost"}
+UNCHECKABLE = {"bench", "contact_cost", "neck_cost"}
 
 
 # ---------------------------------------------------------------------------
