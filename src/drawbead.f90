@@ -70,11 +70,7 @@ program drawbead
       call clear_first_pass(ctl)
    end if
    call run_case(m, ctl, trim(ctl%output_dir), neck, s, rec, errmsg)
-   if (len_trim(errmsg) > 0) then
-      call print_error('deck '''//trim(d%deck_file)//''', group &control, '// &
-                       'variable output_dir: '//trim(errmsg))
-      call finish('bad input', exit_input)
-   end if
+   if (len_trim(errmsg) > 0) call output_dir_error(trim(d%deck_file), trim(errmsg))
    call cpu_time(t_end)
    call write_summary(trim(ctl%output_dir)//'/summary.txt', m, s, ctl, rec, t_end - t_start, ios, iomsg)
    if (ios /= 0 .and. rec%status /= run_write_failed) then
@@ -182,20 +178,13 @@ contains
          call clear_first_pass(ctl)
          return
       end if
-      if (len_trim(ctl%output_dir) + len(sub) > len(ctl1%output_dir)) then
-         call print_error('deck '''//trim(d%deck_file)//''', group &control, variable output_dir: '// &
-                          'longer than the program takes with refine_neck (at most '// &
-                          itoa(len(ctl1%output_dir) - len(sub))//' characters, for its '//sub(2:)//' folder)')
-         call finish('bad input', exit_input)
-      end if
+      if (len_trim(ctl%output_dir) + len(sub) > len(ctl1%output_dir)) &
+         call output_dir_error(trim(d%deck_file), 'longer than the program takes with refine_neck (at most '// &
+                               itoa(len(ctl1%output_dir) - len(sub))//' characters, for its '//sub(2:)//' folder)')
       ! the output directory belongs to this run from now on: an earlier
       ! run's results there are removed, and summary.txt says running
       call open_outputs(trim(ctl%output_dir), trim(ctl%title), out, errmsg)
-      if (len_trim(errmsg) > 0) then
-         call print_error('deck '''//trim(d%deck_file)//''', group &control, '// &
-                          'variable output_dir: '//trim(errmsg))
-         call finish('bad input', exit_input)
-      end if
+      if (len_trim(errmsg) > 0) call output_dir_error(trim(d%deck_file), trim(errmsg))
       call close_outputs(out)
       m1 = m
       m1%pull_distance = coarse_pull*m%pull_distance
@@ -298,6 +287,16 @@ contains
          call finish('a result file of the first pass of refine_neck could not be written', exit_write)
       end select
    end subroutine stop_in_first_pass
+
+   !> OUTPUT_DIR_ERROR: the output directory cannot be used: the error,
+   !> naming the deck, its group and variable, and the end (bad input).
+   !>  deck_file  [in] the deck
+   !>  why        [in] what is wrong
+   subroutine output_dir_error(deck_file, why)
+      character(len=*), intent(in) :: deck_file, why
+      call print_error('deck '''//deck_file//''', group &control, variable output_dir: '//why)
+      call finish('bad input', exit_input)
+   end subroutine output_dir_error
 
    !> CLEAR_FIRST_PASS: without a first pass, the results of an earlier
    !> run's first pass (<output_dir>/coarse) are removed, so that none is
