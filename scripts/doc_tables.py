@@ -294,14 +294,14 @@ def gen_tearing_neck(ctx):
     "80 160 320 640" (the zone's elements stay 0.08h; at 640 the uniform
     elements are already shorter and there is no zone), verbatim, then from
     the summaries the first pass's tearing point and place, the zone, the
-    elements of the run proper and the assemblies of the first pass (asm1)
-    and of the run proper (asm)."""
+    run proper's place of the neck (s/h) and elements, and the assemblies
+    of the first pass (asm1) and of the run proper (asm)."""
     decks = neck_decks(ctx, "neck_decks")
     outdir = os.path.join(ctx.tmp, "neck")
     counts = ["80", "160", "320", "640"]
     out = script_output(ctx, ["scripts/convergence.sh", "-m", "-o", outdir, "-n", " ".join(counts)] + decks)
-    lines = ["", "%-28s %5s %9s %9s %9s %9s %8s %8s %8s" % ("deck", "n", "first/h", "s1/h", "zone_from",
-                                                            "zone_to", "elements", "asm1", "asm")]
+    lines = ["", "%-28s %5s %9s %9s %9s %9s %9s %8s %8s %8s" % ("deck", "n", "first/h", "s1/h", "zone_from",
+                                                                 "zone_to", "s/h", "elements", "asm1", "asm")]
     for deck in decks:
         name = os.path.basename(deck)[:-4]
         for n in counts:
@@ -310,12 +310,13 @@ def gen_tearing_neck(ctx):
             def num(key, fmt="%9.3f"):
                 v = summ.get(key, "none")
                 return fmt % float(v) if v != "none" else "%9s" % v
-            lines.append("%-28s %5s %s %s %s %s %8s %8s %8s" % (name, n, num("coarse_tearing_delta_over_h"),
-                                                                 num("coarse_tearing_s_over_h"),
-                                                                 num("neck_zone_from_over_h"),
-                                                                 num("neck_zone_to_over_h"), summ.get("elements"),
-                                                                 summ.get("coarse_assemblies"),
-                                                                 summ.get("assemblies")))
+            lines.append("%-28s %5s %s %s %s %s %s %8s %8s %8s" % (name, n, num("coarse_tearing_delta_over_h"),
+                                                                    num("coarse_tearing_s_over_h"),
+                                                                    num("neck_zone_from_over_h"),
+                                                                    num("neck_zone_to_over_h"),
+                                                                    num("tearing_s_over_h"), summ.get("elements"),
+                                                                    summ.get("coarse_assemblies"),
+                                                                    summ.get("assemblies")))
     text = ('```\n$ scripts/convergence.sh -m -n "80 160 320 640" <the decks with refine_neck = .true., '
             "stop_at_localization = .true.>\n" + out + "\n" + "\n".join(lines) + "\n```")
     return lambda raw: text
