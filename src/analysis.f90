@@ -20,7 +20,7 @@ module analysis
    use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
                      newton_singular, newton_solve_failed
    use step_control, only: judge_force_change, next_increment, cutback_factor, extrapolation_error, &
-                           judge_error, displacement_error, bound_after_failure
+                           judge_error, displacement_error, bound_after_failure, bound_past_section_maximum
    use tearing, only: check_localization, check_fold, strain_limit_indicator, check_load_maximum, &
                       tear_at_snap_back, element_length_at
    use energy, only: energy_totals, add_increment_work
@@ -340,6 +340,8 @@ contains
             dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations)
          end if
          call bound_after_failure(ctl, dt, dt_failed)
+         ! (under the tools: a free strip past its maximum load has one path)
+         if (m%has_tools) call bound_past_section_maximum(ctl, phase, min_ind, h, dt)
          have_prev = .true.
       end do
    end subroutine run_phase

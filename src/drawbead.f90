@@ -230,7 +230,10 @@ contains
       end if
       neck%coarse_tear_load = rec1%tear_load
       neck%coarse_tear_s = rec1%tear_s
-      neck%zone = neck_zone(rec1%tear_s, 0.5_dp*(m%x(m%n_nodes) - m%x(1)), h)
+      ! centred on the uniform mesh's node nearest the neck: a neck station
+      ! that moves to the next Gauss station with other increments keeps
+      ! its zone (docs/theory.md §7.5)
+      neck%zone = neck_zone(m%x(minloc(abs(m%x - rec1%tear_s), 1)), 0.5_dp*(m%x(m%n_nodes) - m%x(1)), h)
       neck%refinement = 'zone'
       d2 = d
       d2%refine_neck = .false.

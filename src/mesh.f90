@@ -112,11 +112,12 @@ contains
    end subroutine zone_nodes
 
    !> NECK_ZONE: the refined zone of &sheet refine_neck (docs/theory.md
-   !> §7.5): neck_half_width h either side of the neck found on the uniform
-   !> mesh, cut at the sheet's ends.  On the uniform mesh of the
+   !> §7.5): neck_half_width h either side of a centre (the caller passes
+   !> the uniform mesh's node nearest the neck found on it), cut at the
+   !> sheet's ends.  On the uniform mesh of the
    !> continuum-check decks the neck's station lies within 0.5h of the one
    !> the refined mesh finds, well inside the zone.
-   !>  s_star  [in]  reference position of the neck on the uniform mesh
+   !>  s_star  [in]  the centre: the neck's place on the uniform mesh
    !>  half    [in]  half length L
    !>  h       [in]  thickness
    !>  zone    (result) [s0, s1], -L <= s0 < s1 <= L

@@ -13,7 +13,8 @@ module step_control
    implicit none
    private
    public :: judge_force_change, next_increment, cutback_factor, extrapolation_error, judge_error, &
-             displacement_error, bound_after_failure, failed_cap, failed_cap_growth
+             displacement_error, bound_after_failure, failed_cap, failed_cap_growth, bound_past_section_maximum, &
+             branch_cap
 
    !> the increment is multiplied by this after a failed or redone increment
    real(dp), parameter :: cutback_factor = 0.25_dp
@@ -21,6 +22,9 @@ module step_control
    !> most failed_cap dt_f, the bound growing by failed_cap_growth per
    !> converged increment (bound_after_failure)
    real(dp), parameter :: failed_cap = 0.5_dp, failed_cap_growth = 1.1_dp
+   !> while pulling past a section's maximum load the increments are at
+   !> most branch_cap h (bound_past_section_maximum)
+   real(dp), parameter :: branch_cap = 0.025_dp
    !> an increment whose error estimate exceeds this many times
    !> step_tolerance is redone (its successor would be less than half as long)
    real(dp), parameter :: error_redo_ratio = 4.0_dp
@@ -229,4 +233,27 @@ contains
       dt_failed = failed_cap_growth*dt_failed
       if (failed_cap*dt_failed > ctl%max_increment) dt_failed = huge(1.0_dp)
    end subroutine bound_after_failure
+
+   !> BOUND_PAST_SECTION_MAXIMUM: while pulling with the load-maximum
+   !> criterion, once a station's section tangent has lost positive
+   !> definiteness (indicator (7.2) <= 0: the section is past its maximum
+   !> load, under the tool), the increment is at most branch_cap h
+   !> (docs/theory.md §8.3): the path is no longer unique there, and long
+   !> increments land on another branch than short ones.  The caller
+   !> applies it with tools only.
+   !>  ctl      [in]    controls (tearing criterion, min_increment)
+   !>  phase    [in]    'lock' or 'pull'
+   !>  min_ind  [in]    the smallest indicator of the converged state
+   !>  h        [in]    thickness, mm
+   !>  dt       [inout] the next increment
+   pure subroutine bound_past_section_maximum(ctl, phase, min_ind, h, dt)
+      type(controls_type), intent(in) :: ctl
+      character(len=*), intent(in) :: phase
+      real(dp), intent(in) :: min_ind, h
+      real(dp), intent(inout) :: dt
+      if (phase /= 'pull' .or. ctl%tearing_criterion /= 'load_maximum') return
+      if (min_ind > 0.0_dp) return
+      dt = max(min(dt, branch_cap*h), ctl%min_increment)
+   end subroutine bound_past_section_maximum
+
 end module step_control
