@@ -115,7 +115,7 @@ contains
    !> §7.5): neck_half_width h either side of a centre (the caller passes
    !> the uniform mesh's node nearest the neck found on it), cut at the
    !> sheet's ends.  On the uniform mesh of the
-   !> continuum-check decks the neck's station lies within 0.5h of the one
+   !> continuum-check decks the neck's station lies within 0.55h of the one
    !> the refined mesh finds, well inside the zone.
    !>  s_star  [in]  the centre: the neck's place on the uniform mesh
    !>  half    [in]  half length L
