@@ -171,7 +171,7 @@ contains
       rec%tear_s = station_position(m, k)
       rec%tear_element = element_length_at(m, rec%tear_s)
       ! on coarser elements the neck (width of order h/sqrt(12), §12.7) is
-      ! not resolved and the force's maximum comes late: 18-51% on the
+      ! not resolved and the force's maximum comes late: 18-45% on the
       ! continuum-check decks at 0.625-0.75h (docs/validation.md); the
       ! tolerance keeps a zone of exactly 0.1h (its rounded element) quiet
       ! (not in the first pass of refine_neck, which refines there next)
