@@ -75,7 +75,7 @@ contains
       type(output_files), intent(out) :: out
       character(len=*), intent(out) :: errmsg
       character(len=:), allocatable :: why
-      integer :: stat, k
+      integer :: stat
       errmsg = ''
       out%dir = trim(dir)
       call make_directory(out%dir, stat, why)
@@ -83,14 +83,8 @@ contains
          errmsg = 'cannot create output directory '//out%dir//': '//why
          return
       end if
-      do k = 1, size(result_files)
-         call file_remove(out%dir//'/'//trim(result_files(k)), stat, why)
-         if (stat /= 0) then
-            errmsg = 'cannot remove '//out%dir//'/'//trim(result_files(k))//' of an earlier run: '// &
-                     why
-            return
-         end if
-      end do
+      call remove_results(out%dir, errmsg)
+      if (len_trim(errmsg) > 0) return
       call open_new(out, 'summary.txt', out%progress)
       call write_progress(out, 'start', 0.0_dp, 0)
       call open_new(out, 'lock.dat', out%lock)
