@@ -99,10 +99,10 @@ def read(path):
             k, v = line.split('=', 1)
             d[k.strip()] = v.strip()
     return d
-rows = [('punch force at 98% of full lock, N/mm', 'punch_force_98_N_per_mm'),
-        ('punch force at full lock, N/mm', 'punch_force_full_lock_N_per_mm'),
-        ('sheet tension at 98% of full lock, N/mm', 'lock_tension_98_N_per_mm'),
-        ('sheet tension at full lock (end of locking), N/mm', 'lock_tension_N_per_mm'),
+rows = [('punch force at 98% of the lock depth, N/mm', 'punch_force_98_N_per_mm'),
+        ('punch force at the lock depth (end of locking), N/mm', 'punch_force_full_lock_N_per_mm'),
+        ('sheet tension at 98% of the lock depth, N/mm', 'lock_tension_98_N_per_mm'),
+        ('sheet tension at the lock depth (end of locking), N/mm', 'lock_tension_N_per_mm'),
         ('largest restraining force, N/mm', 'max_restraining_force_N_per_mm'),
         ('... at pull delta/h (clamped: the continuum necks)', 'max_restraining_force_at_delta_over_h'),
         ('peak mid-surface strain after locking', 'peak_strain_lock'),
