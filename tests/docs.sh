@@ -15,7 +15,11 @@
 #      --check-links);
 #   c) every namelist variable the program echoes is a row of
 #      docs/input-reference.md, and every summary.txt key and output file
-#      of a run is in docs/output-reference.md (a run with nothing to do).
+#      of a run is in docs/output-reference.md (a run with nothing to do);
+#   d) every tests/unit/*.pf, tests/verification/*.pf, tests/*.sh and
+#      tests/regression/*.sh (written regression/<name>) is a row of the
+#      tables of docs/validation.md, section "The verification ladder",
+#      and every row there names one of them.
 # Exit status 0 when all pass, 1 otherwise.
 set -u -o pipefail
 
@@ -58,6 +62,21 @@ done
 for f in "$work/out"/*; do
     name=$(basename "$f")
     grep -q "\`$name\`" docs/output-reference.md || fail "docs/output-reference.md does not name $name"
+done
+
+# d) the verification ladder: a row per suite and script, none for a file
+# that is gone
+ladder=$(awk '/^## The verification ladder/ { on = 1; next } on && /^## / { exit } on' docs/validation.md)
+rows=$(sed -n "s/^| \`\([^\`]*\)\` |.*/\1/p" <<<"$ladder")
+[[ -n $rows ]] || fail "docs/validation.md: no rows in the section 'The verification ladder'"
+for f in tests/unit/*.pf tests/verification/*.pf tests/*.sh tests/regression/*.sh; do
+    name=${f#tests/}
+    case $name in unit/* | verification/*) name=${name#*/} ;; esac
+    grep -qxF "$name" <<<"$rows" || fail "docs/validation.md (the verification ladder) has no row for $f"
+done
+for name in $rows; do
+    [[ -f tests/$name || -f tests/unit/$name || -f tests/verification/$name ]] ||
+        fail "docs/validation.md (the verification ladder) has a row for $name, not a file of tests/"
 done
 
 if ((failures > 0)); then
