@@ -89,7 +89,7 @@ contains
    !> check_int -- require an integer >= lo.
    !>
    !> errs   [in,out] gets '<ctx>: must be >= lo (got i)' on failure.
-   !> ctx  [in]     see at.
+   !> ctx    [in]     see at.
    !> i      [in]     the value.
    !> lo     [in]     the lower bound.
    subroutine check_int(errs, ctx, i, lo)
@@ -127,7 +127,7 @@ contains
    !> check_profile -- require a profile file name that exists.
    !>
    !> errs   [in,out] gets a message on failure.
-   !> ctx  [in]     see at.
+   !> ctx    [in]     see at.
    !> path   [in]     the file name from the deck.
    subroutine check_profile(errs, ctx, path)
       type(error_list), intent(inout) :: errs
@@ -144,7 +144,7 @@ contains
    !> check_text_length -- reject text that filled its variable (truncated).
    !>
    !> errs   [in,out] gets a message on failure.
-   !> ctx  [in]     see at.
+   !> ctx    [in]     see at.
    !> s      [in]     the text variable.
    subroutine check_text_length(errs, ctx, s)
       type(error_list), intent(inout) :: errs
@@ -158,7 +158,7 @@ contains
    !> fail -- append '<ctx>: <what>' to an error list.
    !>
    !> errs   [in,out] the list.
-   !> ctx  [in]     see at.
+   !> ctx    [in]     see at.
    !> what   [in]     what is wrong and what was found.
    subroutine fail(errs, ctx, what)
       type(error_list), intent(inout) :: errs
