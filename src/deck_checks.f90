@@ -103,7 +103,7 @@ contains
    !> check_choice -- require a (lower-case, left-adjusted) value from a list.
    !>
    !> errs     [in,out] gets '<ctx>: must be one of ... (got ...)' on failure.
-   !> ctx    [in]     see at.
+   !> ctx      [in]     see at.
    !> value    [in]     the value.
    !> choices  [in]     the allowed values.
    subroutine check_choice(errs, ctx, value, choices)
