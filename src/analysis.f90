@@ -16,13 +16,15 @@ module analysis
    use model, only: model_type, state_type, load_type, load_init
    use contact, only: ich_penetration
    use controls, only: controls_type
-   use record, only: run_record, record_pull, run_no_convergence, run_interrupted, run_write_failed
-   use solver, only: newton_result, newton_solve, commit_state, newton_ok, newton_cutback, &
+   use record, only: run_record, record_pull, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
+                     split_note
+   use remesh, only: last_radius_exit, exit_pieces, split_elements, split_field
+   use solver, only: newton_result, newton_solve, commit_state, assemble, newton_ok, newton_cutback, &
                      newton_singular, newton_solve_failed
    use step_control, only: judge_force_change, next_increment, cutback_factor, extrapolation_error, &
                            judge_error, displacement_error, bound_after_failure, bound_past_section_maximum
    use tearing, only: check_localization, check_fold, strain_limit_indicator, check_load_maximum, &
-                      tear_at_snap_back, element_length_at
+                      tear_at_snap_back, element_length_at, maximum_approaching
    use energy, only: energy_totals, add_increment_work
    use output, only: output_files, write_row, write_strains, write_snapshot, write_progress
    use os, only: stop_requested, signal_name
@@ -88,7 +90,7 @@ contains
 
    !> RUN_PHASE: advance the load parameter from p0 to p1 with adaptive
    !> increments; commit, check the criteria and write a row per increment.
-   !>  m     [in]  model
+   !>  m     [in,out] model (its elements split once while pulling, §7.6)
    !>  ctl   [in]  controls (increments, tolerances, criteria, output)
    !>  s     [in,out] state, converged at p0 on entry
    !>  phase [in]  'lock' or 'pull'
@@ -96,7 +98,7 @@ contains
    !>  out   [in,out] open output files (snapshots.dat counts its blocks)
    !>  rec   [in,out] run record
    subroutine run_phase(m, ctl, s, phase, p0, p1, out, rec)
-      type(model_type), intent(in) :: m
+      type(model_type), intent(inout) :: m
       type(controls_type), intent(in) :: ctl
       type(state_type), intent(inout) :: s
       character(len=*), intent(in) :: phase
@@ -104,26 +106,23 @@ contains
       type(output_files), intent(inout) :: out
       type(run_record), intent(inout) :: rec
       type(band_matrix) :: kb
-      real(dp), allocatable :: nl_old(:), r(:), u_prev(:), ind_old(:, :), dof_scale(:)
+      real(dp), allocatable :: nl_old(:), r(:), u_prev(:), ind_old(:, :), dof_scale(:), x_old(:)
+      integer, allocatable :: pieces(:)
       type(load_type) :: ld
       type(newton_result) :: nr
       real(dp) :: p, dt, dt_prev, h, eh, dt_failed
       real(dp) :: reaction, punch, lift, pen, min_ind, force, force_change, target, tool_work
       real(dp) :: next_snapshot, ell, prev_conjugate, err, dt_err, err_redone
       integer :: pulled
-      logical :: have_prev, have_force_prev, redo, paper_met, snapped
+      logical :: have_prev, have_force_prev, redo, paper_met, snapped, split_due
       character(len=16) :: tag
       character(len=200) :: msg
       h = m%thickness
       eh = m%youngs*h
       ell = ctl%tearing_length_over_h*h
       pulled = node_dof(m%n_nodes, dof_v)
-      allocate (r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el), dof_scale(m%n_dof))
-      ! the weight of each dof in the displacement error: 1 for v and w (mm),
-      ! h for the slopes v' and w' (docs/theory.md §8.3)
-      dof_scale = h
-      dof_scale(node_dof(1, dof_v)::dofs_per_node) = 1.0_dp
-      dof_scale(node_dof(1, dof_w)::dofs_per_node) = 1.0_dp
+      allocate (r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el))
+      dof_scale = phase_dof_scale(m)
       call band_init(kb, m%n_dof, half_band, half_band)
       p = p0
       dt = ctl%initial_increment
@@ -260,7 +259,8 @@ contains
          min_ind = minval(s%indicator)
          call check_localization(m, s, phase, p, dt, ind_old, nl_old, ell, rec, paper_met)
          if (paper_met) call write_strains(out, 'strain_localization.dat', m, s, &
-                                           'at the increment where the paper''s criterion was met')
+                                           'at the increment where the paper''s criterion was met'// &
+                                           split_note(rec, h))
          ! tearing_criterion = 'section': the tearing point is the paper's
          if (paper_met .and. ctl%tearing_criterion == 'section') then
             rec%torn = .true.
@@ -334,6 +334,38 @@ contains
                return
             end if
          end if
+         ! the neck's refinement once the force turns toward its maximum
+         ! (docs/theory.md §7.6): the split state, re-equilibrated, carries
+         ! on; the phase's arrays follow the new mesh (the predictor's last
+         ! motion is a Hermite field too, carried exactly, and starts from
+         ! the re-equilibrated state)
+         split_due = phase == 'pull' .and. m%exit_element > 0.0_dp .and. .not. rec%split%done
+         if (split_due) split_due = maximum_approaching(rec%pull_delta(1:rec%n_pull), rec%pull_force(1:rec%n_pull), &
+                                                        h, m%max_load_stress*h)
+         if (split_due) then
+            x_old = m%x
+            ! the last increment's motion, carried to the new mesh below
+            u_prev = s%u - u_prev
+            call refine_at_exit(m, ctl, s, rec, p, pieces, r)
+            if (rec%status /= run_ok) return
+            if (rec%split%done) then
+               u_prev = s%u - split_field(x_old, pieces, u_prev)
+               ind_old = s%indicator
+               nl_old = strain_limit_indicator(m, s%gpn(igp_strain, :, :), ell)
+               ! the load maximum is looked for on the split mesh's path
+               rec%max_at = 0
+               rec%split%pull_first = rec%n_pull + 1
+               pulled = node_dof(m%n_nodes, dof_v)
+               dof_scale = phase_dof_scale(m)
+               call band_init(kb, m%n_dof, half_band, half_band)
+               rec%reactions = r
+               rec%last_conjugate = r(pulled)
+               force = r(pulled)
+            end if
+            if (.not. rec%split%done) u_prev = s%u - u_prev
+            ! (the split is looked for once)
+            rec%split%done = .true.
+         end if
          if (err >= 0.0_dp) then
             dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations, dt_err)
          else
@@ -345,4 +377,119 @@ contains
          have_prev = .true.
       end do
    end subroutine run_phase
+
+   !> PHASE_DOF_SCALE: the weight of each dof in the displacement error
+   !> (docs/theory.md §8.3): 1 for v and w (mm), h for the slopes v' and w'.
+   !>  m      [in]  model
+   pure function phase_dof_scale(m) result(dof_scale)
+      type(model_type), intent(in) :: m
+      real(dp) :: dof_scale(m%n_dof)
+      dof_scale = m%thickness
+      dof_scale(node_dof(1, dof_v)::dofs_per_node) = 1.0_dp
+      dof_scale(node_dof(1, dof_w)::dofs_per_node) = 1.0_dp
+   end function phase_dof_scale
+
+   !> REFINE_AT_EXIT: the neck resolved on the default path (docs/theory.md
+   !> §7.6): at a converged state of the pull, the elements around the exit
+   !> of the last radius on the pulled side are split into parts of
+   !> m%exit_element (remesh), the state is mapped onto them and
+   !> re-equilibrated at the same load, and the split is recorded.  Nothing
+   !> is split without a station on a radius or when no element there is
+   !> longer than the parts (pieces all 1 then).
+   !>  m       [in,out] the model; on return the split mesh
+   !>  ctl     [in]     the controls (Newton's limits)
+   !>  s       [in,out] the converged state, on return the mapped state in
+   !>                   equilibrium
+   !>  rec     [in,out] the record: split, counts; status and message when
+   !>                   the mapped state finds no equilibrium
+   !>  p       [in]     the pull, mm
+   !>  pieces  [out]    the parts each old element was split into
+   !>  r       [out]    the residual of the re-equilibrated state (its
+   !>                   reactions at the prescribed dofs), on the new mesh
+   subroutine refine_at_exit(m, ctl, s, rec, p, pieces, r)
+      type(model_type), intent(inout) :: m
+      type(controls_type), intent(in) :: ctl
+      type(state_type), intent(inout) :: s
+      type(run_record), intent(inout) :: rec
+      real(dp), intent(in) :: p
+      integer, allocatable, intent(out) :: pieces(:)
+      real(dp), allocatable, intent(inout) :: r(:)
+      type(load_type) :: ld
+      type(band_matrix) :: kb
+      type(newton_result) :: nr
+      type(load_type) :: ld_step
+      real(dp), allocatable :: r0(:)
+      real(dp) :: x_exit, h, f_scale, pnewdt, alpha, da
+      logical :: found
+      integer :: first, last, steps
+      h = m%thickness
+      allocate (pieces(m%n_el))
+      pieces = 1
+      call last_radius_exit(m, s, x_exit, found)
+      if (.not. found) then
+         write (output_unit, '(a)') '# drawbead: refine_exit: no station on a tool radius: the mesh stays as it is'
+         return
+      end if
+      pieces = exit_pieces(m, s, x_exit)
+      if (all(pieces == 1)) return
+      first = findloc(pieces > 1, .true., 1)
+      last = findloc(pieces > 1, .true., 1, back=.true.)
+      rec%split%done = .true.
+      rec%split%phase = 'pull'
+      rec%split%load = p
+      rec%split%x_exit = x_exit
+      rec%split%zone = [m%x(first), m%x(last + 1)]
+      rec%split%elements_before = m%n_el
+      call split_elements(m, s, pieces)
+      rec%split%elements_after = m%n_el
+      write (output_unit, '(a,f0.4,a,f0.3,a,f0.3,a,f0.3,a,i0,a,i0,a)') '# drawbead: refine_exit: at pull/h = ', &
+         p/h, ' the elements from s/h = ', rec%split%zone(1)/h, ' to ', rec%split%zone(2)/h, &
+         ' split (exit of the last radius at x/h = ', x_exit/h, '): ', rec%split%elements_before, ' -> ', &
+         m%n_el, ' elements'
+      ! the mapped state in equilibrium at the same load: its imbalance r0
+      ! (the mapped stresses are not in equilibrium on the new stations) is
+      ! removed gradually, as a load, f_ext + (1 - alpha) r0 with alpha from
+      ! 0 (the mapped state, in equilibrium by construction) to 1, each
+      ! step committed: mid-pull, with sections past their maximum load on
+      ! the radius, a single Newton solve from the mapped state can leave
+      ! the branch the run was on (bead A steel at 0.59h: diverged)
+      call phase_load(m, 'pull', p, ld)
+      call band_init(kb, m%n_dof, half_band, half_band)
+      if (allocated(r)) deallocate (r)
+      allocate (r(m%n_dof), r0(m%n_dof))
+      s%u1 = s%u
+      call assemble(m, s, ld, kb, r0, f_scale, pnewdt)
+      rec%assemblies = rec%assemblies + 1
+      r0 = merge(0.0_dp, r0, ld%fixed)
+      ld_step = ld
+      alpha = 0.0_dp
+      da = 1.0_dp
+      steps = 0
+      do while (alpha < 1.0_dp .and. pnewdt >= 1.0_dp)
+         da = min(da, 1.0_dp - alpha)
+         ld_step%f_ext = ld%f_ext + (1.0_dp - (alpha + da))*r0
+         s%u1 = s%u
+         call newton_solve(m, s, ld_step, kb, r, ctl%max_iterations, ctl%tolerance, nr)
+         rec%newton_iterations = rec%newton_iterations + nr%iterations
+         rec%assemblies = rec%assemblies + nr%assemblies
+         if (nr%status == newton_ok) then
+            call commit_state(m, s, ld%tool_shift)
+            alpha = alpha + da
+            steps = steps + 1
+            da = 2.0_dp*da
+         else
+            da = 0.25_dp*da
+            if (da < 1.0_dp/4096.0_dp) exit
+         end if
+      end do
+      if (alpha < 1.0_dp) then
+         rec%status = run_no_convergence
+         write (rec%message, '(a,f0.4,a)') 'in pull: no equilibrium of the state mapped onto the '// &
+            'split mesh (', alpha, ' of its imbalance removed): set &sheet refine_exit = .false.'
+         return
+      end if
+      rec%split%force_change = r(node_dof(m%n_nodes, dof_v))/rec%last_conjugate - 1.0_dp
+      write (output_unit, '(a,i0,a,es9.2,a,f8.5)') '# drawbead: refine_exit: re-equilibrated in ', steps, &
+         ' steps, residual ', nr%residual(nr%iterations), ', restraining force changed by ', rec%split%force_change
+   end subroutine refine_at_exit
 end module analysis

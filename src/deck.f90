@@ -94,6 +94,7 @@ module deck
       real(dp) :: refine_to = 0.0_dp                  ! ... to s/h
       real(dp) :: refine_element = 0.0_dp            ! element length in the zone, units of h (0: no zone)
       logical :: refine_neck = .false.                ! a coarse pass finds the neck, the run refines around it
+      logical :: refine_exit = .true.                 ! split the elements at the last radius's exit after locking
       ! &material
       real(dp) :: youngs_modulus = 207000.0_dp        ! MPa
       real(dp) :: poissons_ratio = 0.3_dp

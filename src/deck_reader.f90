@@ -269,10 +269,10 @@ contains
       real(dp) :: thickness, length, mesh_beta, back_tension, strain_gradient
       real(dp) :: refine_from, refine_to, refine_element
       integer :: n_elements
-      logical :: refine_neck
+      logical :: refine_neck, refine_exit
       character(len=16) :: left_edge, normal_stress
       namelist /sheet/ thickness, length, n_elements, mesh_beta, left_edge, back_tension, &
-         normal_stress, strain_gradient, refine_from, refine_to, refine_element, refine_neck
+         normal_stress, strain_gradient, refine_from, refine_to, refine_element, refine_neck, refine_exit
 
       thickness = d%thickness
       length = d%length
@@ -286,6 +286,7 @@ contains
       refine_to = d%refine_to
       refine_element = d%refine_element
       refine_neck = d%refine_neck
+      refine_exit = d%refine_exit
       select case (action)
       case (act_read_unit)
          read (unit, nml=sheet, iostat=ios, iomsg=msg)
@@ -308,6 +309,7 @@ contains
       d%refine_to = refine_to
       d%refine_element = refine_element
       d%refine_neck = refine_neck
+      d%refine_exit = refine_exit
    end subroutine nml_sheet
 
    !> nml_material -- namelist &material (arguments as group_io).

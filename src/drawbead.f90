@@ -14,7 +14,7 @@ program drawbead
    use controls, only: controls_type
    use model, only: model_type, state_type, state_init
    use record, only: run_record, run_record_init, run_ok, run_no_convergence, run_interrupted, &
-                     run_write_failed, neck_record
+                     run_write_failed, neck_record, split_note
    use mesh, only: neck_zone
    use analysis, only: run_phase
    use text, only: itoa
@@ -95,7 +95,8 @@ contains
 
    !> RUN_CASE: one run of a model: locking, then pulling, the result files
    !> in dir (all but summary.txt, which the caller writes).
-   !>  m          [in]  the model
+   !>  m          [in,out] the model; on return that of the end of the run
+   !>                   (its elements split while pulling, docs/theory.md §7.6)
    !>  ctl        [in]  the controls
    !>  dir        [in]  the output directory
    !>  neck       [in]  the neck's refined zone, for the summary
@@ -104,7 +105,7 @@ contains
    !>  errmsg     [out] '' or why the output directory could not be set up
    !>                   (nothing was run then)
    subroutine run_case(m, ctl, dir, neck, s, rec, errmsg)
-      type(model_type), intent(in) :: m
+      type(model_type), intent(inout) :: m
       type(controls_type), intent(in) :: ctl
       character(len=*), intent(in) :: dir
       type(neck_record), intent(in) :: neck
@@ -127,7 +128,7 @@ contains
       if (rec%status == run_ok .and. .not. (rec%torn .and. ctl%stop_at_localization)) then
          call run_phase(m, ctl, s, 'pull', 0.0_dp, m%pull_distance, out, rec)
       end if
-      call write_strains(out, 'strain_pull.dat', m, s, 'after pulling')
+      call write_strains(out, 'strain_pull.dat', m, s, 'after pulling'//split_note(rec, m%thickness))
       call write_tools(out, 'tools_pull.dat', m, s%shift, 'at the end of pulling')
       call close_outputs(out)
       if (out%failed .and. rec%status /= run_write_failed) then

@@ -71,12 +71,12 @@
 module material
    use kinds, only: dp
    use material_j2, only: umat_block, n_statev, ip_youngs, ip_poisson, isv_tangent, isv_eps22, &
-                          isv_sigma33
+                          isv_sigma33, isv_flow_stress
    implicit none
    private
 
    public :: material_type, material_builtin, material_user, builtin_material, user_material
-   public :: material_update, max_load_strain, umat, user_umat_linked
+   public :: material_update, max_load_strain, umat, user_umat_linked, material_state_mapped
 
    !> values of material_type%kind: the built-in J2/Hill law, a user's UMAT
    integer, parameter :: material_builtin = 1, material_user = 2
@@ -310,4 +310,19 @@ contains
          g_old = g
       end do
    end function max_load_strain
+   !> MATERIAL_STATE_MAPPED: state variables interpolated between material
+   !> points (remesh, docs/theory.md §7.6) made consistent for the next
+   !> update: the built-in law's cached flow stress and hardening slope
+   !> belong to the old points' plastic strains, so they are marked unknown
+   !> (recomputed from the mapped plastic strain at the next update; with a
+   !> hardening curve concave in the plastic strain the interpolated cache
+   !> lies below the curve and a trial stress could be judged plastic that
+   !> the curve holds elastic).  A user's UMAT keeps its state as mapped.
+   !>  mat     [in]     the material
+   !>  statev  [in,out] (npt, nstatv) the mapped state variables of a section
+   pure subroutine material_state_mapped(mat, statev)
+      type(material_type), intent(in) :: mat
+      real(dp), intent(inout) :: statev(:, :)
+      if (mat%kind == material_builtin) statev(:, isv_flow_stress) = 0.0_dp
+   end subroutine material_state_mapped
 end module material

@@ -36,6 +36,10 @@ module model
       real(dp) :: back_tension = 0.0_dp      ! N/mm, on a free left edge
       real(dp) :: lock_depth = 0.0_dp        ! H at the end of locking, mm
       real(dp) :: pull_distance = 0.0_dp     ! delta at the end of pulling, mm
+      ! the neck's refinement on the default path (docs/theory.md §7.6):
+      ! length of the elements split at the exit of the last radius after
+      ! locking, mm (0: none)
+      real(dp) :: exit_element = 0.0_dp
    end type model_type
 
    !> What is applied in one increment: prescribed dofs, dead loads, an end

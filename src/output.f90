@@ -269,7 +269,9 @@ contains
       call put(out, out%snapshots, '# drawbead strain snapshots: '//trim(title)//nl// &
                '# one block (gnuplot index 0, 1, ...) at the first converged increment at or past'// &
                ' each multiple of '//trim(buf)//'h of H (locking) and of delta (pulling);'// &
-               ' each block opens with a line: # block K phase load/h increment'//nl// &
+               ' each block opens with a line: # block K phase load/h increment elements'// &
+               ' (its rows are the Gauss stations of that mesh, which &sheet refine_exit splits once'// &
+               ' while pulling)'//nl// &
                strain_columns//nl)
       out%n_snapshots = 0
       if (out%failed) errmsg = out%failure
@@ -292,8 +294,8 @@ contains
       character(len=128) :: buf
       if (out%snapshots%fd == -1) return
       if (out%n_snapshots > 0) call put(out, out%snapshots, nl//nl)
-      write (buf, '(a,i0,1x,a,1x,es24.16e3,1x,i0)') '# block ', out%n_snapshots, phase, &
-         load_over_h, increment
+      write (buf, '(a,i0,1x,a,1x,es24.16e3,1x,i0,1x,i0)') '# block ', out%n_snapshots, phase, &
+         load_over_h, increment, m%n_el
       call put(out, out%snapshots, trim(buf)//nl)
       call write_strain_rows(out, out%snapshots, m, s)
       out%n_snapshots = out%n_snapshots + 1

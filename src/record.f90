@@ -6,7 +6,7 @@ module record
    use kinds, only: dp
    implicit none
    private
-   public :: run_record, run_record_init, record_pull, neck_record
+   public :: run_record, run_record_init, record_pull, neck_record, split_record, split_note
    public :: run_ok, run_no_convergence, run_interrupted, run_write_failed
 
    !> run_record%status: the run went on to its end (or stopped at tearing);
@@ -30,6 +30,23 @@ module record
       integer :: coarse_elements = 0, coarse_assemblies = 0
    end type neck_record
 
+   !> The neck's refinement on the default path (docs/theory.md §7.6): done
+   !> or not, the phase and load parameter (mm) where elements were split,
+   !> the exit of the last radius there (current abscissa, mm), the span of
+   !> the split elements [s0, s1] (mm, reference positions), the element
+   !> counts before and after, and the first sample of the pull history on
+   !> the split mesh (the load-maximum criterion reads the history from
+   !> there: the re-equilibrated state's force differs from the last one
+   !> on the coarse mesh by the mapping's error, some 0.5%).
+   type :: split_record
+      logical :: done = .false.
+      character(len=8) :: phase = ''
+      real(dp) :: load = 0.0_dp, x_exit = 0.0_dp, zone(2) = 0.0_dp
+      integer :: elements_before = 0, elements_after = 0
+      integer :: pull_first = 1
+      real(dp) :: force_change = 0.0_dp
+   end type split_record
+
    !> What the run has found so far (written to summary.txt).
    type :: run_record
       ! the paper's pointwise criterion (3.1)
@@ -47,9 +64,10 @@ module record
       logical :: torn = .false.
       character(len=8) :: tear_phase = ''
       real(dp) :: tear_load = 0.0_dp, tear_s = 0.0_dp, tear_element = 0.0_dp
-      ! the load-maximum candidate: index in the pull history of the largest
-      ! restraining force so far (0: none yet) and ln(lambda) at every Gauss
-      ! station (flat list, element by element) in that state
+      ! the load-maximum candidate: index in the pull history from
+      ! split%pull_first of the largest restraining force so far (0: none
+      ! yet) and ln(lambda) at every Gauss station (flat list, element by
+      ! element) in that state
       integer :: max_at = 0
       real(dp), allocatable :: strain_at_max(:)
       real(dp) :: peak_force = 0.0_dp, lock_force = 0.0_dp
@@ -74,6 +92,8 @@ module record
       real(dp) :: energy_pull_start(5) = 0.0_dp
       ! the neck's refined zone and the first pass that placed it
       type(neck_record) :: neck
+      ! the elements split at the exit of the last radius
+      type(split_record) :: split
    end type run_record
 
 contains
@@ -105,4 +125,21 @@ contains
       rec%pull_delta(rec%n_pull) = delta
       rec%pull_force(rec%n_pull) = force
    end subroutine record_pull
+
+   !> SPLIT_NOTE: what a strain file's header says of a split mesh (its
+   !> rows are that mesh's Gauss stations): '' without a split.
+   !>  rec  [in] the record
+   !>  h    [in] thickness, mm
+   function split_note(rec, h) result(note)
+      type(run_record), intent(in) :: rec
+      real(dp), intent(in) :: h
+      character(len=:), allocatable :: note
+      character(len=160) :: buf
+      note = ''
+      if (.not. rec%split%done) return
+      write (buf, '(a,f0.4,a,i0,a,i0,a)') ' (on the mesh split at pull/h = ', rec%split%load/h, ': ', &
+         rec%split%elements_after, ' elements, ', rec%split%elements_before, &
+         ' before; the rows follow the mesh, docs/theory.md §7.6)'
+      note = trim(buf)
+   end function split_note
 end module record

@@ -20,6 +20,7 @@ module setup
    use tool_distance, only: tool_gap
    use bead_builder, only: build_rectangular_bead
    use profile_io, only: read_profile
+   use remesh, only: exit_element_over_h
    implicit none
    private
    public :: setup_run, material_constants, material_of_deck
@@ -83,6 +84,13 @@ contains
       m%back_tension = d%back_tension
       m%lock_depth = d%lock_depth
       m%pull_distance = d%pull_distance
+      ! the neck resolved on the default path (docs/theory.md §7.6): a clamped
+      ! pull with the contact section and the load-maximum criterion, on a
+      ! mesh without a zone of its own
+      if (d%refine_exit .and. m%has_tools .and. m%contact_section &
+          .and. d%tearing_criterion == 'load_maximum' .and. d%pull_distance > 0.0_dp &
+          .and. d%lock_depth > 0.0_dp .and. .not. d%refine_neck .and. .not. (d%refine_element > 0.0_dp)) &
+         m%exit_element = exit_element_over_h*h
    end subroutine setup_run
 
    !> MATERIAL_OF_DECK: the material: the built-in J2/Hill law with its

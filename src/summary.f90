@@ -193,6 +193,22 @@ contains
          call add(text, 'coarse_elements = none')
          call add(text, 'coarse_assemblies = none')
       end if
+      ! the elements split at the exit of the last radius (docs/theory.md §7.6)
+      if (rec%split%done) then
+         call add(text, 'split_phase = '//trim(rec%split%phase))
+      else
+         call add(text, 'split_phase = none')
+      end if
+      call put(text, 'split_load_over_h', rec%split%load/h, rec%split%done)
+      call put(text, 'split_exit_x_over_h', rec%split%x_exit/h, rec%split%done)
+      call put(text, 'split_from_over_h', rec%split%zone(1)/h, rec%split%done)
+      call put(text, 'split_to_over_h', rec%split%zone(2)/h, rec%split%done)
+      call put(text, 'split_force_change', rec%split%force_change, rec%split%done)
+      if (rec%split%done) then
+         call add(text, 'split_elements_before = '//itoa(rec%split%elements_before))
+      else
+         call add(text, 'split_elements_before = none')
+      end if
       call add(text, 'increments = '//itoa(rec%increments))
       call add(text, 'newton_iterations = '//itoa(rec%newton_iterations))
       call add(text, 'cutbacks = '//itoa(rec%cutbacks))

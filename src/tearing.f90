@@ -19,6 +19,7 @@ module tearing
    public :: check_load_maximum, tear_at_snap_back, track_load_maximum, neck_confirmed, &
              load_at_maximum, parabola_vertex
    public :: tear_force_drop, neck_strain_rate, tear_confirm_pull, set_torn, element_length_at
+   public :: maximum_approaching, approach_slope_ratio
 
    !> A maximum of the restraining force is a neck once the force has fallen
    !> tear_force_drop (relative) below it and either the fastest-stretching
@@ -34,6 +35,13 @@ module tearing
    !> thousandths of h and recovering (bead A mu 0, contact section);
    !> a neck's fall lasts 0.1h or more (the continuum's: 0.2h to fall 1%)
    real(dp), parameter :: tear_confirm_pull = 0.05_dp
+   !> The restraining force approaches a neck's maximum once its slope over
+   !> the last approach_window h of pull has fallen to approach_slope_ratio
+   !> of its slope over [0.05h, 0.15h] while the force is at least
+   !> approach_capacity of the sheet's plane-strain capacity tau* h
+   !> (docs/theory.md §7.6)
+   real(dp), parameter :: approach_slope_ratio = 0.5_dp, approach_window = 0.1_dp, &
+                          approach_capacity = 0.6_dp
 
 contains
 
@@ -105,9 +113,10 @@ contains
       type(state_type), intent(in) :: s
       type(run_record), intent(inout) :: rec
       real(dp) :: load
-      integer :: k
-      if (rec%torn .or. rec%n_pull == 0) return
-      call track_load_maximum(rec%pull_delta(1:rec%n_pull), rec%pull_force(1:rec%n_pull), &
+      integer :: k, k0
+      k0 = rec%split%pull_first
+      if (rec%torn .or. rec%n_pull < k0) return
+      call track_load_maximum(rec%pull_delta(k0:rec%n_pull), rec%pull_force(k0:rec%n_pull), &
                               pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), m%thickness, &
                               rec%localized, rec%max_at, rec%strain_at_max, load, k)
       if (k > 0) call set_torn(m, rec, load, k)
@@ -128,12 +137,14 @@ contains
       type(run_record), intent(inout) :: rec
       logical, intent(out) :: torn
       real(dp), allocatable :: growth(:)
+      integer :: k0
       torn = .false.
+      k0 = rec%split%pull_first
       if (rec%torn .or. .not. rec%localized) return
-      if (rec%max_at == 0 .or. rec%max_at >= rec%n_pull) return
+      if (rec%max_at == 0 .or. rec%max_at >= rec%n_pull - k0 + 1) return
       growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
-      call set_torn(m, rec, load_at_maximum(rec%pull_delta(1:rec%n_pull), &
-                                            rec%pull_force(1:rec%n_pull), rec%max_at, m%thickness), &
+      call set_torn(m, rec, load_at_maximum(rec%pull_delta(k0:rec%n_pull), &
+                                            rec%pull_force(k0:rec%n_pull), rec%max_at, m%thickness), &
                     first_near_max(growth))
       torn = .true.
    end subroutine tear_at_snap_back
@@ -484,4 +495,45 @@ contains
          g(k) = m%max_load_strain - (pg(hi) - pg(lo - 1))/(pw(hi) - pw(lo - 1))
       end do
    end function strain_limit_indicator
+
+   !> MAXIMUM_APPROACHING: has the restraining force turned toward a neck's
+   !> maximum?  Its secant slope over the last approach_window h of pull
+   !> (the history interpolated linearly) against the slope over [0.05h,
+   !> 0.15h] (past the elastic start of the pull): .true. once the ratio is
+   !> at most approach_slope_ratio (or the early slope is not positive) and
+   !> the force is at least approach_capacity times the sheet's capacity
+   !> tau* h: the section that carries N at the exit of the last radius
+   !> then nears its maximum load (docs/theory.md §7.6); a force far below
+   !> the capacity (a free edge drawing steadily) is no neck.  Needs a pull
+   !> of at least 0.15h + approach_window h (else .false.).
+   !>  delta, force  [in] the pull history (ascending delta), mm, N/mm
+   !>  h             [in] thickness, mm
+   !>  capacity      [in] the sheet's plane-strain capacity tau* h, N/mm
+   pure function maximum_approaching(delta, force, h, capacity) result(yes)
+      real(dp), intent(in) :: delta(:), force(:), h, capacity
+      logical :: yes
+      real(dp) :: s_ref, s_now, d
+      integer :: n
+      yes = .false.
+      n = size(delta)
+      if (n < 2) return
+      d = delta(n)
+      if (d < (0.15_dp + approach_window)*h) return
+      if (force(n) < approach_capacity*capacity) return
+      s_ref = (history_at(0.15_dp*h) - history_at(0.05_dp*h))/(0.1_dp*h)
+      s_now = (force(n) - history_at(d - approach_window*h))/(approach_window*h)
+      yes = s_ref <= 0.0_dp .or. s_now <= approach_slope_ratio*s_ref
+   contains
+      !> the force at pull x, linear between the samples around it
+      pure function history_at(x) result(f)
+         real(dp), intent(in) :: x
+         real(dp) :: f
+         integer :: i
+         i = 2
+         do while (i < n .and. delta(i) < x)
+            i = i + 1
+         end do
+         f = force(i - 1) + (force(i) - force(i - 1))*(x - delta(i - 1))/max(delta(i) - delta(i - 1), tiny(1.0_dp))
+      end function history_at
+   end function maximum_approaching
 end module tearing

@@ -89,9 +89,9 @@ fi
 # 3. uniform elements of 1h (60 elements) against refine_element = 1:
 # nothing to refine
 sed -e 's/refine_element = 0.5/refine_element = 1.0/' -e 's/n_elements = 20/n_elements = 60/' "$deck" > "$out/fine.nml"
-sed -e 's/refine_neck = .true., refine_element = 0.5//' -e 's/n_elements = 20/n_elements = 60/' "$deck" \
+sed -e 's/refine_neck = .true., refine_element = 0.5/refine_exit = .false./' -e 's/n_elements = 20/n_elements = 60/' "$deck" \
     > "$out/plain60.nml"
-sed -e 's/refine_neck = .true., refine_element = 0.5//' "$deck" > "$out/plain.nml"
+sed -e 's/refine_neck = .true., refine_element = 0.5/refine_exit = .false./' "$deck" > "$out/plain.nml"
 if run fine "$out/fine.nml" && run plain60 "$out/plain60.nml"; then
     if [ "$(value "$out/fine/summary.txt" neck_refinement)" != none ] || [ -e "$out/fine/coarse" ]; then
         fail "fine: expected neck_refinement = none and no first pass"

@@ -1,0 +1,299 @@
+!> remesh -- elements of a converged state split in place (docs/theory.md
+!> §7.6): the mesh change of the neck's refinement on the default path.
+!>
+!> A cubic Hermite element split at interior points carries the same v, w
+!> field exactly: its dofs are values and slopes, so the new nodes take the
+!> old element's interpolated (v, v', w, w') and every point of the sheet
+!> keeps its displacement (split_field).  What lives at the Gauss stations
+!> cannot be carried exactly, the new stations lying between the old ones:
+!>  - each section history value (stresses, state variables, energies,
+!>    zbar) is interpolated linearly in the reference position between the
+!>    two old stations around the new one, and held at the outer stations'
+!>    values beyond them.  A convex combination of two admissible states
+!>    (a convex yield surface, a hardening curve concave in the plastic
+!>    strain) is admissible, which a cubic through the four stations would
+!>    not guarantee near the element's ends;
+!>  - the fibres' converged log strain ln(Lambda_k) is then set to the new
+!>    station's own stretch 1 + eps + zbar_k rho, so that the next
+!>    increment's strain starts from where the station is (an interpolated
+!>    value would enter the next increment as a strain jump);
+!>  - a contact station takes the column of the nearest old station (its
+!>    sense, slip and dissipation), with its position and gap set to the
+!>    new station's own, so that no slip is counted for the move.
+!> The caller re-equilibrates the mapped state at the same load before the
+!> next increment (analysis's refine_at_exit).
+module remesh
+   use kinds, only: dp
+   use hermite, only: n_gauss, gauss_xi, hermite_shape
+   use mesh, only: dofs_per_node, element_dofs, node_dof, dof_v, dof_v_slope, dof_w, dof_w_slope
+   use element, only: element_gradients, v_dofs, w_dofs
+   use kinematics, only: strain_measures
+   use section, only: ih_strain, ih_zbar, ih_statev, ih_stress22
+   use material, only: material_state_mapped
+   use contact, only: ich_position, ich_penetration, ich_hint, ich_active
+   use tool_distance, only: tool_gap
+   use tools, only: seg_arc
+   use model, only: model_type, state_type
+   implicit none
+   private
+   public :: split_nodes, split_field, station_weights, split_stations, split_elements, exit_pieces, &
+             last_radius_exit
+   public :: exit_element_over_h, exit_zone_before, exit_zone_after
+
+   !> The neck's refinement on the default path (docs/theory.md §7.6):
+   !> elements of exit_element_over_h h (the load maximum converges on
+   !> elements of 0.1h at the neck, §7.5) over the material whose current
+   !> position lies from exit_zone_before h before the exit of the last
+   !> radius on the pulled side to exit_zone_after h after it at the time of
+   !> the split.  A clamped pull necks in material that is on that radius
+   !> when the force turns toward its maximum, 1.2-2.2h before its exit
+   !> (bead A and B, steel, uniform and refined meshes).
+   real(dp), parameter :: exit_element_over_h = 0.08_dp
+   real(dp), parameter :: exit_zone_before = 3.0_dp, exit_zone_after = 0.5_dp
+
+contains
+
+   !> SPLIT_NODES: node positions after splitting each element into equal
+   !> parts; the old nodes keep their positions exactly.
+   !>  x       [in]  node positions, ascending
+   !>  pieces  [in]  (size(x) - 1) parts per element, >= 1
+   !>  xn      (result) sum(pieces) + 1 node positions
+   pure function split_nodes(x, pieces) result(xn)
+      real(dp), intent(in) :: x(:)
+      integer, intent(in) :: pieces(:)
+      real(dp) :: xn(sum(pieces) + 1)
+      integer :: e, j, k
+      k = 0
+      do e = 1, size(pieces)
+         do j = 0, pieces(e) - 1
+            k = k + 1
+            xn(k) = x(e) + (x(e + 1) - x(e))*real(j, dp)/real(pieces(e), dp)
+         end do
+      end do
+      xn(k + 1) = x(size(x))
+   end function split_nodes
+
+   !> SPLIT_FIELD: a nodal dof vector (v, v', w, w' per node) on the split
+   !> mesh: the old nodes keep their dofs, a new node at xi = j/pieces(e) of
+   !> element e takes the element's Hermite interpolation there (exact: the
+   !> field is the same cubic on each part).
+   !>  x       [in]  node positions of the old mesh
+   !>  pieces  [in]  parts per old element
+   !>  u       [in]  dofs of the old mesh, dofs_per_node*size(x)
+   !>  un      (result) dofs of the split mesh
+   pure function split_field(x, pieces, u) result(un)
+      real(dp), intent(in) :: x(:), u(:)
+      integer, intent(in) :: pieces(:)
+      real(dp) :: un(dofs_per_node*(sum(pieces) + 1))
+      real(dp) :: ul(8), nv(4), dn(4), d2n(4), le
+      integer :: e, j, k
+      k = 0
+      do e = 1, size(pieces)
+         ul = u(element_dofs(e))
+         le = x(e + 1) - x(e)
+         do j = 0, pieces(e) - 1
+            k = k + 1
+            if (j == 0) then
+               un(node_dof(k, dof_v):node_dof(k, dof_w_slope)) = ul(1:dofs_per_node)
+               cycle
+            end if
+            call hermite_shape(real(j, dp)/real(pieces(e), dp), le, nv, dn, d2n)
+            un(node_dof(k, dof_v)) = dot_product(nv, ul(v_dofs))
+            un(node_dof(k, dof_v_slope)) = dot_product(dn, ul(v_dofs))
+            un(node_dof(k, dof_w)) = dot_product(nv, ul(w_dofs))
+            un(node_dof(k, dof_w_slope)) = dot_product(dn, ul(w_dofs))
+         end do
+      end do
+      k = k + 1
+      un(node_dof(k, dof_v):node_dof(k, dof_w_slope)) = u(size(u) - dofs_per_node + 1:)
+   end function split_field
+
+   !> STATION_WEIGHTS: linear interpolation between an element's Gauss
+   !> stations at local coordinate xi: value = (1 - w) v(i1) + w v(i2);
+   !> beyond the outer stations their value (i1 = i2).
+   !>  xi      [in]  local coordinate in [0, 1]
+   !>  i1, i2  [out] the stations around xi
+   !>  w       [out] weight of i2, in [0, 1]
+   pure subroutine station_weights(xi, i1, i2, w)
+      real(dp), intent(in) :: xi
+      integer, intent(out) :: i1, i2
+      real(dp), intent(out) :: w
+      integer :: i
+      w = 0.0_dp
+      if (xi <= gauss_xi(1)) then
+         i1 = 1
+         i2 = 1
+         return
+      end if
+      if (xi >= gauss_xi(n_gauss)) then
+         i1 = n_gauss
+         i2 = n_gauss
+         return
+      end if
+      i1 = 1
+      do i = 1, n_gauss - 1
+         if (xi >= gauss_xi(i)) i1 = i
+      end do
+      i2 = i1 + 1
+      w = (xi - gauss_xi(i1))/(gauss_xi(i2) - gauss_xi(i1))
+   end subroutine station_weights
+
+   !> SPLIT_STATIONS: values at the Gauss stations on the split mesh, each
+   !> interpolated linearly between the old element's stations around it
+   !> (station_weights); an element that stays whole keeps its values.
+   !>  pieces  [in]  parts per old element
+   !>  v       [in]  (n_comp, n_gauss, old elements) values
+   !>  vn      (result) (n_comp, n_gauss, sum(pieces))
+   pure function split_stations(pieces, v) result(vn)
+      integer, intent(in) :: pieces(:)
+      real(dp), intent(in) :: v(:, :, :)
+      real(dp) :: vn(size(v, 1), n_gauss, sum(pieces))
+      real(dp) :: w
+      integer :: e, j, f, ig, i1, i2
+      f = 0
+      do e = 1, size(pieces)
+         do j = 1, pieces(e)
+            f = f + 1
+            if (pieces(e) == 1) then
+               vn(:, :, f) = v(:, :, e)
+               cycle
+            end if
+            do ig = 1, n_gauss
+               call station_weights((real(j - 1, dp) + gauss_xi(ig))/real(pieces(e), dp), i1, i2, w)
+               vn(:, ig, f) = (1.0_dp - w)*v(:, i1, e) + w*v(:, i2, e)
+            end do
+         end do
+      end do
+   end function split_stations
+
+   !> SPLIT_ELEMENTS: split element e of a converged state into pieces(e)
+   !> equal parts (module header): the model's mesh and the state (dofs,
+   !> section and contact histories, Gauss-point results, indicator; trial
+   !> copies equal to the converged ones) on the new mesh.  The state is
+   !> mapped, not in equilibrium: the caller re-equilibrates it.
+   !>  m       [in,out] the model: x, n_el, n_nodes, n_dof of the split mesh
+   !>  s       [in,out] the converged state, mapped to the split mesh
+   !>  pieces  [in]     m%n_el parts per element, >= 1
+   subroutine split_elements(m, s, pieces)
+      type(model_type), intent(inout) :: m
+      type(state_type), intent(inout) :: s
+      integer, intent(in) :: pieces(:)
+      real(dp), allocatable :: xn(:), un(:), hn(:, :, :, :), cn(:, :, :, :), gpn(:, :, :), ind(:, :)
+      real(dp) :: le, lf, xi, w, ulf(8), g(4), gm(4, 8), eps, rho, deps(4), drho(4), &
+                  d2eps(4, 4), d2rho(4, 4), nv(4), dn(4), d2n(4), pos(2), shifts(2), d, nrm(2), curv, t(2)
+      integer :: e, f, j, ig, i1, i2, it, n_new, seg
+      n_new = sum(pieces)
+      xn = split_nodes(m%x, pieces)
+      un = split_field(m%x, pieces, s%u)
+      allocate (hn(size(s%hn, 1), size(s%hn, 2), n_gauss, n_new), cn(size(s%cn, 1), n_gauss, n_new, 2))
+      gpn = split_stations(pieces, s%gpn)
+      ind = reshape(split_stations(pieces, reshape(s%indicator, [1, n_gauss, m%n_el])), [n_gauss, n_new])
+      shifts = [0.0_dp, s%shift]
+      f = 0
+      do e = 1, m%n_el
+         le = m%x(e + 1) - m%x(e)
+         do j = 1, pieces(e)
+            f = f + 1
+            if (pieces(e) == 1) then
+               hn(:, :, :, f) = s%hn(:, :, :, e)
+               cn(:, :, f, :) = s%cn(:, :, e, :)
+               cycle
+            end if
+            lf = xn(f + 1) - xn(f)
+            ulf = un(element_dofs(f))
+            do ig = 1, n_gauss
+               xi = (real(j - 1, dp) + gauss_xi(ig))/real(pieces(e), dp)
+               call station_weights(xi, i1, i2, w)
+               hn(:, :, ig, f) = (1.0_dp - w)*s%hn(:, :, i1, e) + w*s%hn(:, :, i2, e)
+               call material_state_mapped(m%material, hn(:, ih_statev:ih_stress22 - 1, ig, f))
+               ! the fibres' converged strain: the new station's own stretch
+               call element_gradients(gauss_xi(ig), lf, ulf, g, gm)
+               call strain_measures(g, eps, rho, deps, drho, d2eps, d2rho)
+               hn(:, ih_strain, ig, f) = log(1.0_dp + eps + hn(:, ih_zbar, ig, f)*rho)
+               ! contact: the nearest old station's column at the new place
+               call hermite_shape(gauss_xi(ig), lf, nv, dn, d2n)
+               pos = [xn(f) + gauss_xi(ig)*lf + dot_product(nv, ulf(v_dofs)), dot_product(nv, ulf(w_dofs))]
+               do it = 1, 2
+                  cn(:, ig, f, it) = s%cn(:, merge(i1, i2, w < 0.5_dp), e, it)
+                  cn(ich_position:ich_position + 1, ig, f, it) = [pos(1), pos(2) - shifts(it)]
+                  if (.not. m%has_tools) cycle
+                  call tool_gap(m%tool(it), pos(1), pos(2) - shifts(it), d, nrm, curv, t, seg, &
+                                hint=nint(cn(ich_hint, ig, f, it)))
+                  cn(ich_penetration, ig, f, it) = d
+                  cn(ich_hint, ig, f, it) = real(seg, dp)
+               end do
+            end do
+         end do
+      end do
+      call move_alloc(xn, m%x)
+      m%n_el = n_new
+      m%n_nodes = n_new + 1
+      m%n_dof = dofs_per_node*m%n_nodes
+      s%u = un
+      call move_alloc(un, s%u1)
+      s%h1 = hn
+      call move_alloc(hn, s%hn)
+      s%c1 = cn
+      call move_alloc(cn, s%cn)
+      s%gp = gpn
+      call move_alloc(gpn, s%gpn)
+      call move_alloc(ind, s%indicator)
+   end subroutine split_elements
+
+   !> LAST_RADIUS_EXIT: the current abscissa of the exit of the last radius
+   !> on the pulled side: the largest x of a Gauss station in contact with
+   !> an arc of either tool at the converged state.
+   !>  m       [in]  the model (with tools)
+   !>  s       [in]  the converged state
+   !>  x_exit  [out] the abscissa, mm (unset when found is .false.)
+   !>  found   [out] .false. when no station touches an arc
+   pure subroutine last_radius_exit(m, s, x_exit, found)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      real(dp), intent(out) :: x_exit
+      logical, intent(out) :: found
+      integer :: e, ig, it, seg
+      x_exit = -huge(1.0_dp)
+      found = .false.
+      if (.not. m%has_tools) return
+      do e = 1, m%n_el
+         do ig = 1, n_gauss
+            do it = 1, 2
+               if (s%cn(ich_active, ig, e, it) < 0.5_dp .or. s%cn(ich_penetration, ig, e, it) <= 0.0_dp) cycle
+               seg = nint(s%cn(ich_hint, ig, e, it))
+               if (seg < 1 .or. seg > size(m%tool(it)%seg)) cycle
+               if (m%tool(it)%seg(seg)%kind /= seg_arc) cycle
+               found = .true.
+               x_exit = max(x_exit, s%cn(ich_position, ig, e, it))
+            end do
+         end do
+      end do
+   end subroutine last_radius_exit
+
+   !> EXIT_PIECES: the parts each element is split into for the neck's
+   !> refinement (module constants): an element whose current span meets
+   !> [x_exit - exit_zone_before h, x_exit + exit_zone_after h] is cut into
+   !> parts no longer than m%exit_element; the others stay whole.
+   !>  m       [in]  the model (m%exit_element > 0)
+   !>  s       [in]  the converged state
+   !>  x_exit  [in]  the exit of the last radius (last_radius_exit), mm
+   !>  pieces  (result) m%n_el parts, >= 1
+   pure function exit_pieces(m, s, x_exit) result(pieces)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      real(dp), intent(in) :: x_exit
+      integer :: pieces(m%n_el)
+      real(dp) :: lo, hi, xa, xb
+      integer :: e
+      lo = x_exit - exit_zone_before*m%thickness
+      hi = x_exit + exit_zone_after*m%thickness
+      pieces = 1
+      do e = 1, m%n_el
+         xa = m%x(e) + s%u(node_dof(e, dof_v))
+         xb = m%x(e + 1) + s%u(node_dof(e + 1, dof_v))
+         if (xb < lo .or. xa > hi) cycle
+         ! (a relative slack: an element of exactly k target lengths gives k)
+         pieces(e) = max(1, ceiling((m%x(e + 1) - m%x(e))/m%exit_element*(1.0_dp - 1.0e-9_dp)))
+      end do
+   end function exit_pieces
+end module remesh
