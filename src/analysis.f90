@@ -16,7 +16,7 @@ module analysis
    use model, only: model_type, state_type, load_type, load_init
    use contact, only: ich_penetration
    use controls, only: controls_type
-   use record, only: run_record, record_pull, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
+   use record, only: run_record, record_pull, record_lock, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
                      split_note
    use remesh, only: last_radius_exit, exit_pieces, split_elements, split_field
    use solver, only: newton_result, newton_solve, commit_state, assemble, newton_ok, newton_cutback, &
@@ -131,6 +131,8 @@ contains
       rec%last_conjugate = 0.0_dp
       if (phase == 'pull' .and. allocated(rec%reactions)) rec%last_conjugate = rec%reactions(pulled)
       nl_old = strain_limit_indicator(m, s%gpn(igp_strain, :, :), ell)
+      ! each phase's force has its own maximum (the lock's tension, the pull's N)
+      rec%max_at = 0
       if (phase == 'pull') then
          rec%work_pull_start = rec%work
          call energy_totals(m, s, rec%energy_pull_start)
@@ -185,8 +187,7 @@ contains
                ! past a maximum of the pull force it is the tearing point
                ! (docs/theory.md §7.4)
                if (ctl%stop_at_localization) then
-                  if (ctl%tearing_criterion == 'load_maximum' .and. phase == 'pull') &
-                     call tear_at_snap_back(m, s, rec, snapped)
+                  if (watches_maximum(m, ctl, phase)) call tear_at_snap_back(m, s, phase, rec, snapped)
                   if (rec%localized) return
                end if
                rec%status = run_no_convergence
@@ -262,12 +263,15 @@ contains
                                            'at the increment where the paper''s criterion was met'// &
                                            split_note(rec, h))
          ! tearing_criterion = 'section': the tearing point is the paper's
+         ! (it has no mesh limit in this model, docs/theory.md §7.1: said once)
          if (paper_met .and. ctl%tearing_criterion == 'section') then
             rec%torn = .true.
             rec%tear_phase = rec%loc_phase
             rec%tear_load = rec%load_cr
             rec%tear_s = rec%s_star
             rec%tear_element = element_length_at(m, rec%s_star)
+            call warn('tearing point by the paper''s pointwise criterion (tearing_criterion = ''section''): '// &
+                      'it has no mesh limit in this model and moves with the mesh (docs/theory.md §7.1)', 'run_phase')
          end if
          tool_work = 0.0_dp
          if (phase == 'lock') tool_work = 0.5_dp*dt*(rec%last_conjugate + punch)
@@ -277,13 +281,19 @@ contains
          rec%last_conjugate = force
          if (phase == 'lock') then
             rec%lock_force = punch
+            ! a clamped sheet can neck while the bead closes: the maximum of
+            ! its tension (docs/theory.md §7.4)
+            if (watches_maximum(m, ctl, phase)) then
+               call record_lock(rec, p, reaction)
+               call check_load_maximum(m, s, phase, rec)
+            end if
             call write_row(out, out%lock, [p/h, punch/eh, punch, real(nr%iterations, dp), dt/h, &
                                       min_ind, pen, reaction/eh, reaction])
          else
             rec%peak_force = max(rec%peak_force, reaction)
             rec%last_lift = lift
             call record_pull(rec, p, reaction)
-            if (ctl%tearing_criterion == 'load_maximum') call check_load_maximum(m, s, rec)
+            if (watches_maximum(m, ctl, phase)) call check_load_maximum(m, s, phase, rec)
             call write_row(out, out%pull, [p/h, reaction/eh, reaction, real(nr%iterations, dp), &
                                       dt/h, min_ind, lift/eh, lift, pen, punch/eh])
          end if
@@ -377,6 +387,21 @@ contains
          have_prev = .true.
       end do
    end subroutine run_phase
+
+   !> WATCHES_MAXIMUM: does the load-maximum criterion (docs/theory.md §7.4)
+   !> watch this phase's force?  The pull's restraining force always with
+   !> that criterion; the lock's tension with tools and a clamped left edge
+   !> (with a free edge the tension is the back tension, a dead load).
+   !>  m      [in]  model
+   !>  ctl    [in]  controls
+   !>  phase  [in]  'lock' or 'pull'
+   pure logical function watches_maximum(m, ctl, phase)
+      type(model_type), intent(in) :: m
+      type(controls_type), intent(in) :: ctl
+      character(len=*), intent(in) :: phase
+      watches_maximum = ctl%tearing_criterion == 'load_maximum'
+      if (phase == 'lock') watches_maximum = watches_maximum .and. m%has_tools .and. .not. m%left_edge_free
+   end function watches_maximum
 
    !> PHASE_DOF_SCALE: the weight of each dof in the displacement error
    !> (docs/theory.md §8.3): 1 for v and w (mm), h for the slopes v' and w'.

@@ -6,7 +6,7 @@ module record
    use kinds, only: dp
    implicit none
    private
-   public :: run_record, run_record_init, record_pull, neck_record, split_record, split_note
+   public :: run_record, run_record_init, record_pull, record_lock, neck_record, split_record, split_note
    public :: run_ok, run_no_convergence, run_interrupted, run_write_failed
 
    !> run_record%status: the run went on to its end (or stopped at tearing);
@@ -78,6 +78,10 @@ module record
       character(len=200) :: message = ''
       real(dp), allocatable :: pull_delta(:), pull_force(:)
       integer :: n_pull = 0
+      ! the locking history of a clamped sheet: lift H and the sheet's
+      ! tension N at the right edge (the load-maximum criterion of the lock)
+      real(dp), allocatable :: lock_lift(:), lock_tension(:)
+      integer :: n_lock = 0
       real(dp) :: max_penetration = 0.0_dp
       ! the first converged state folded tighter than fold_curvature (|rho| h)
       logical :: folded = .false.
@@ -102,7 +106,7 @@ contains
    !>  rec  [out] the record
    subroutine run_record_init(rec)
       type(run_record), intent(out) :: rec
-      allocate (rec%pull_delta(1024), rec%pull_force(1024))
+      allocate (rec%pull_delta(1024), rec%pull_force(1024), rec%lock_lift(1024), rec%lock_tension(1024))
    end subroutine run_record_init
 
    !> RECORD_PULL: append (delta, N) to the pull history, growing it as needed.
@@ -112,19 +116,37 @@ contains
    subroutine record_pull(rec, delta, force)
       type(run_record), intent(inout) :: rec
       real(dp), intent(in) :: delta, force
-      real(dp), allocatable :: tmp(:)
-      if (rec%n_pull == size(rec%pull_delta)) then
-         allocate (tmp(2*rec%n_pull))
-         tmp(1:rec%n_pull) = rec%pull_delta
-         call move_alloc(tmp, rec%pull_delta)
-         allocate (tmp(2*rec%n_pull))
-         tmp(1:rec%n_pull) = rec%pull_force
-         call move_alloc(tmp, rec%pull_force)
-      end if
-      rec%n_pull = rec%n_pull + 1
-      rec%pull_delta(rec%n_pull) = delta
-      rec%pull_force(rec%n_pull) = force
+      call append(rec%pull_delta, rec%pull_force, rec%n_pull, delta, force)
    end subroutine record_pull
+
+   !> RECORD_LOCK: append (H, N) to the locking history.
+   !>  rec    [in,out] the record
+   !>  lift   [in]     rise H of the lower tool, mm
+   !>  force  [in]     the sheet's tension N at the right edge, N/mm
+   subroutine record_lock(rec, lift, force)
+      type(run_record), intent(inout) :: rec
+      real(dp), intent(in) :: lift, force
+      call append(rec%lock_lift, rec%lock_tension, rec%n_lock, lift, force)
+   end subroutine record_lock
+
+   !> APPEND: one sample (x, y) after the n held, the arrays doubled when full.
+   subroutine append(xs, ys, n, x, y)
+      real(dp), allocatable, intent(inout) :: xs(:), ys(:)
+      integer, intent(inout) :: n
+      real(dp), intent(in) :: x, y
+      real(dp), allocatable :: tmp(:)
+      if (n == size(xs)) then
+         allocate (tmp(2*n))
+         tmp(1:n) = xs
+         call move_alloc(tmp, xs)
+         allocate (tmp(2*n))
+         tmp(1:n) = ys
+         call move_alloc(tmp, ys)
+      end if
+      n = n + 1
+      xs(n) = x
+      ys(n) = y
+   end subroutine append
 
    !> SPLIT_NOTE: what a strain file's header says of a split mesh (its
    !> rows are that mesh's Gauss stations): '' without a split.

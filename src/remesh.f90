@@ -183,6 +183,7 @@ contains
                   d2eps(4, 4), d2rho(4, 4), nv(4), dn(4), d2n(4), pos(2), shifts(2), d, nrm(2), curv, t(2)
       integer :: e, f, j, ig, i1, i2, it, n_new, seg
       n_new = sum(pieces)
+      allocate (xn(n_new + 1), un(dofs_per_node*(n_new + 1)))
       xn = split_nodes(m%x, pieces)
       un = split_field(m%x, pieces, s%u)
       allocate (hn(size(s%hn, 1), size(s%hn, 2), n_gauss, n_new), cn(size(s%cn, 1), n_gauss, n_new, 2))

@@ -99,52 +99,71 @@ contains
       nl_old = nl_new
    end subroutine check_localization
 
-   !> CHECK_LOAD_MAXIMUM: the program's tearing prediction in the pull phase
-   !> (docs/theory.md §7.4), after the increment's (delta, N) has been
-   !> appended to the pull history: track the largest restraining force and
-   !> the strain field there; once a neck is confirmed past it, record the
-   !> tearing point at the maximum (interpolated) and where the strain grew
-   !> most since.
-   !>  m, s  [in]     model and the state converged at the last pull point
-   !>  rec   [in,out] pull history; max_at, strain_at_max; torn, tear_phase,
-   !>                 tear_load, tear_s, set once
-   subroutine check_load_maximum(m, s, rec)
+   !> CHECK_LOAD_MAXIMUM: the load-maximum tearing criterion of a phase
+   !> (docs/theory.md §7.4), after the increment's (load, force) has been
+   !> appended to that phase's history: while pulling the restraining force
+   !> N(delta), read from the split mesh's first sample on (§7.6); while a
+   !> clamped sheet is locked its tension N(H) at the right edge.  Track the
+   !> largest force and the strain field there; once a neck is confirmed
+   !> past it, record the tearing point at the maximum (interpolated) and
+   !> where the strain grew most since.
+   !>  m, s   [in]     model and the state converged at the last point
+   !>  phase  [in]     'lock' or 'pull'
+   !>  rec    [in,out] the histories; max_at, strain_at_max; torn,
+   !>                  tear_phase, tear_load, tear_s, set once
+   subroutine check_load_maximum(m, s, phase, rec)
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
+      character(len=*), intent(in) :: phase
       type(run_record), intent(inout) :: rec
       real(dp) :: load
-      integer :: k, k0
-      k0 = rec%split%pull_first
-      if (rec%torn .or. rec%n_pull < k0) return
-      call track_load_maximum(rec%pull_delta(k0:rec%n_pull), rec%pull_force(k0:rec%n_pull), &
-                              pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), m%thickness, &
-                              rec%localized, rec%max_at, rec%strain_at_max, load, k)
-      if (k > 0) call set_torn(m, rec, load, k)
+      integer :: k
+      if (rec%torn) return
+      if (phase == 'lock') then
+         if (rec%n_lock == 0) return
+         call track_load_maximum(rec%lock_lift(1:rec%n_lock), rec%lock_tension(1:rec%n_lock), &
+                                 pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), m%thickness, &
+                                 rec%localized, rec%max_at, rec%strain_at_max, load, k)
+      else
+         associate (k0 => rec%split%pull_first)
+            if (rec%n_pull < k0) return
+            call track_load_maximum(rec%pull_delta(k0:rec%n_pull), rec%pull_force(k0:rec%n_pull), &
+                                    pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), m%thickness, &
+                                    rec%localized, rec%max_at, rec%strain_at_max, load, k)
+         end associate
+      end if
+      if (k > 0) call set_torn(m, rec, phase, load, k)
    end subroutine check_load_maximum
 
-   !> TEAR_AT_SNAP_BACK: an increment of the pull that cannot converge past
-   !> a maximum of the restraining force, once the section has lost
+   !> TEAR_AT_SNAP_BACK: an increment that cannot converge past a maximum
+   !> of the phase's force (check_load_maximum), once the section has lost
    !> positive definiteness somewhere (the paper's criterion met), is the
    !> snap-back of a forming neck: no equilibrium is near under the
-   !> prescribed pull (docs/theory.md §7.4).  The tearing point is then the
+   !> prescribed load (docs/theory.md §7.4).  The tearing point is then the
    !> maximum, at the station whose strain grew most since it.
-   !>  m, s  [in]     model and the last converged state
-   !>  rec   [in,out] as check_load_maximum
-   !>  torn  [out]    .true. when the tearing point was recorded here
-   subroutine tear_at_snap_back(m, s, rec, torn)
+   !>  m, s   [in]     model and the last converged state
+   !>  phase  [in]     'lock' or 'pull'
+   !>  rec    [in,out] as check_load_maximum
+   !>  torn   [out]    .true. when the tearing point was recorded here
+   subroutine tear_at_snap_back(m, s, phase, rec, torn)
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
+      character(len=*), intent(in) :: phase
       type(run_record), intent(inout) :: rec
       logical, intent(out) :: torn
-      real(dp), allocatable :: growth(:)
-      integer :: k0
+      real(dp), allocatable :: growth(:), loads(:), forces(:)
       torn = .false.
-      k0 = rec%split%pull_first
       if (rec%torn .or. .not. rec%localized) return
-      if (rec%max_at == 0 .or. rec%max_at >= rec%n_pull - k0 + 1) return
+      if (phase == 'lock') then
+         loads = rec%lock_lift(1:rec%n_lock)
+         forces = rec%lock_tension(1:rec%n_lock)
+      else
+         loads = rec%pull_delta(rec%split%pull_first:rec%n_pull)
+         forces = rec%pull_force(rec%split%pull_first:rec%n_pull)
+      end if
+      if (rec%max_at == 0 .or. rec%max_at >= size(loads)) return
       growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
-      call set_torn(m, rec, load_at_maximum(rec%pull_delta(k0:rec%n_pull), &
-                                            rec%pull_force(k0:rec%n_pull), rec%max_at, m%thickness), &
+      call set_torn(m, rec, phase, load_at_maximum(loads, forces, rec%max_at, m%thickness), &
                     first_near_max(growth))
       torn = .true.
    end subroutine tear_at_snap_back
@@ -166,18 +185,20 @@ contains
       le = m%x(e + 1) - m%x(e)
    end function element_length_at
 
-   !> SET_TORN: record the tearing point of the pull phase.
-   !>  m     [in]     model
-   !>  rec   [in,out] torn, tear_phase, tear_load, tear_s, tear_element
-   !>  load  [in]     pull distance at tearing, mm
-   !>  k     [in]     the station (flat list) where the neck forms
-   subroutine set_torn(m, rec, load, k)
+   !> SET_TORN: record the tearing point of the load-maximum criterion.
+   !>  m      [in]     model
+   !>  rec    [in,out] torn, tear_phase, tear_load, tear_s, tear_element
+   !>  phase  [in]     'lock' or 'pull'
+   !>  load   [in]     the lift H or the pull delta at tearing, mm
+   !>  k      [in]     the station (flat list) where the neck forms
+   subroutine set_torn(m, rec, phase, load, k)
       type(model_type), intent(in) :: m
       type(run_record), intent(inout) :: rec
+      character(len=*), intent(in) :: phase
       real(dp), intent(in) :: load
       integer, intent(in) :: k
       rec%torn = .true.
-      rec%tear_phase = 'pull'
+      rec%tear_phase = phase
       rec%tear_load = load
       rec%tear_s = station_position(m, k)
       rec%tear_element = element_length_at(m, rec%tear_s)
