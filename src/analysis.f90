@@ -18,7 +18,8 @@ module analysis
    use controls, only: controls_type
    use record, only: run_record, record_pull, record_lock, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
                      split_note
-   use remesh, only: last_radius_exit, exit_pieces, split_elements, split_field
+   use remesh, only: last_radius_exit, exit_pieces, split_elements, split_field, split_stations, &
+                     exit_zone_before, exit_resplit_before
    use solver, only: newton_result, newton_solve, commit_state, assemble, newton_ok, newton_cutback, &
                      newton_singular, newton_solve_failed
    use step_control, only: judge_force_change, next_increment, cutback_factor, extrapolation_error, &
@@ -344,37 +345,50 @@ contains
                return
             end if
          end if
-         ! the neck's refinement once the force turns toward its maximum
+         ! the neck's refinement once the force turns toward its maximum,
+         ! and again whenever coarse elements are drawn near the exit
          ! (docs/theory.md §7.6): the split state, re-equilibrated, carries
          ! on; the phase's arrays follow the new mesh (the predictor's last
          ! motion is a Hermite field too, carried exactly, and starts from
          ! the re-equilibrated state)
-         split_due = phase == 'pull' .and. m%exit_element > 0.0_dp .and. .not. rec%split%done
-         if (split_due) split_due = maximum_approaching(rec%pull_delta(1:rec%n_pull), rec%pull_force(1:rec%n_pull), &
-                                                        h, m%max_load_stress*h)
+         split_due = .false.
+         if (phase == 'pull' .and. m%exit_element > 0.0_dp) then
+            if (rec%split%armed) then
+               split_due = coarse_near_exit(m, s)
+            else
+               rec%split%armed = maximum_approaching(rec%pull_delta(1:rec%n_pull), &
+                                                     rec%pull_force(1:rec%n_pull), h, m%max_load_stress*h)
+               split_due = rec%split%armed
+            end if
+         end if
          if (split_due) then
             x_old = m%x
             ! the last increment's motion, carried to the new mesh below
             u_prev = s%u - u_prev
             call refine_at_exit(m, ctl, s, rec, p, pieces, r)
             if (rec%status /= run_ok) return
-            if (rec%split%done) then
+            if (any(pieces > 1)) then
                u_prev = s%u - split_field(x_old, pieces, u_prev)
                ind_old = s%indicator
                nl_old = strain_limit_indicator(m, s%gpn(igp_strain, :, :), ell)
-               ! the load maximum is looked for on the split mesh's path
-               rec%max_at = 0
-               rec%split%pull_first = rec%n_pull + 1
+               if (rec%split%count == 1) then
+                  ! the load maximum is looked for on the split mesh's path
+                  rec%max_at = 0
+                  rec%split%pull_first = rec%n_pull + 1
+               else if (allocated(rec%strain_at_max)) then
+                  ! a later split: the candidate's strains follow the mesh
+                  rec%strain_at_max = pack(split_stations(pieces, &
+                                           reshape(rec%strain_at_max, [1, n_gauss, size(pieces)])), .true.)
+               end if
                pulled = node_dof(m%n_nodes, dof_v)
                dof_scale = phase_dof_scale(m)
                call band_init(kb, m%n_dof, half_band, half_band)
                rec%reactions = r
                rec%last_conjugate = r(pulled)
                force = r(pulled)
+            else
+               u_prev = s%u - u_prev
             end if
-            if (.not. rec%split%done) u_prev = s%u - u_prev
-            ! (the split is looked for once)
-            rec%split%done = .true.
          end if
          if (err >= 0.0_dp) then
             dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations, dt_err)
@@ -387,6 +401,22 @@ contains
          have_prev = .true.
       end do
    end subroutine run_phase
+
+   !> COARSE_NEAR_EXIT: are elements longer than m%exit_element drawn within
+   !> exit_resplit_before h before the exit of the last radius (or within
+   !> its exit_zone_after h after it)?  Then the neck's zone is split again
+   !> (docs/theory.md §7.6).
+   !>  m  [in]  model
+   !>  s  [in]  converged state
+   logical function coarse_near_exit(m, s)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      real(dp) :: x_exit
+      logical :: found
+      call last_radius_exit(m, s, x_exit, found)
+      coarse_near_exit = .false.
+      if (found) coarse_near_exit = any(exit_pieces(m, s, x_exit, exit_resplit_before) > 1)
+   end function coarse_near_exit
 
    !> WATCHES_MAXIMUM: does the load-maximum criterion (docs/theory.md §7.4)
    !> watch this phase's force?  The pull's restraining force always with
@@ -444,7 +474,7 @@ contains
       type(newton_result) :: nr
       type(load_type) :: ld_step
       real(dp), allocatable :: r0(:)
-      real(dp) :: x_exit, h, f_scale, pnewdt, alpha, da
+      real(dp) :: x_exit, h, f_scale, pnewdt, alpha, da, force_change
       logical :: found
       integer :: first, last, steps
       h = m%thickness
@@ -455,22 +485,26 @@ contains
          write (output_unit, '(a)') '# drawbead: refine_exit: no station on a tool radius: the mesh stays as it is'
          return
       end if
-      pieces = exit_pieces(m, s, x_exit)
+      pieces = exit_pieces(m, s, x_exit, exit_zone_before)
       if (all(pieces == 1)) return
       first = findloc(pieces > 1, .true., 1)
       last = findloc(pieces > 1, .true., 1, back=.true.)
-      rec%split%done = .true.
-      rec%split%phase = 'pull'
-      rec%split%load = p
-      rec%split%x_exit = x_exit
-      rec%split%zone = [m%x(first), m%x(last + 1)]
-      rec%split%elements_before = m%n_el
+      rec%split%count = rec%split%count + 1
+      if (rec%split%count == 1) then
+         rec%split%phase = 'pull'
+         rec%split%load = p
+         rec%split%x_exit = x_exit
+         rec%split%zone = [m%x(first), m%x(last + 1)]
+         rec%split%elements_before = m%n_el
+      else
+         rec%split%zone = [min(rec%split%zone(1), m%x(first)), max(rec%split%zone(2), m%x(last + 1))]
+      end if
+      write (output_unit, '(a,f0.4,a,f0.3,a,f0.3,a,f0.3,a,i0,a,i0,a)') '# drawbead: refine_exit: at pull/h = ', &
+         p/h, ' the elements from s/h = ', m%x(first)/h, ' to ', m%x(last + 1)/h, &
+         ' split (exit of the last radius at x/h = ', x_exit/h, '): ', m%n_el, ' -> ', &
+         sum(pieces), ' elements'
       call split_elements(m, s, pieces)
       rec%split%elements_after = m%n_el
-      write (output_unit, '(a,f0.4,a,f0.3,a,f0.3,a,f0.3,a,i0,a,i0,a)') '# drawbead: refine_exit: at pull/h = ', &
-         p/h, ' the elements from s/h = ', rec%split%zone(1)/h, ' to ', rec%split%zone(2)/h, &
-         ' split (exit of the last radius at x/h = ', x_exit/h, '): ', rec%split%elements_before, ' -> ', &
-         m%n_el, ' elements'
       ! the mapped state in equilibrium at the same load: its imbalance r0
       ! (the mapped stresses are not in equilibrium on the new stations) is
       ! removed gradually, as a load, f_ext + (1 - alpha) r0 with alpha from
@@ -513,8 +547,9 @@ contains
             'split mesh (', alpha, ' of its imbalance removed): set &sheet refine_exit = .false.'
          return
       end if
-      rec%split%force_change = r(node_dof(m%n_nodes, dof_v))/rec%last_conjugate - 1.0_dp
+      force_change = r(node_dof(m%n_nodes, dof_v))/rec%last_conjugate - 1.0_dp
+      if (rec%split%count == 1) rec%split%force_change = force_change
       write (output_unit, '(a,i0,a,es9.2,a,f8.5)') '# drawbead: refine_exit: re-equilibrated in ', steps, &
-         ' steps, residual ', nr%residual(nr%iterations), ', restraining force changed by ', rec%split%force_change
+         ' steps, residual ', nr%residual(nr%iterations), ', restraining force changed by ', force_change
    end subroutine refine_at_exit
 end module analysis

@@ -30,16 +30,18 @@ module record
       integer :: coarse_elements = 0, coarse_assemblies = 0
    end type neck_record
 
-   !> The neck's refinement on the default path (docs/theory.md §7.6): done
-   !> or not, the phase and load parameter (mm) where elements were split,
-   !> the exit of the last radius there (current abscissa, mm), the span of
-   !> the split elements [s0, s1] (mm, reference positions), the element
-   !> counts before and after, and the first sample of the pull history on
+   !> The neck's refinement on the default path (docs/theory.md §7.6): armed
+   !> (the force has turned toward a maximum) and the splits done; of the
+   !> first, the phase and load parameter (mm), the exit of the last radius
+   !> there (current abscissa, mm); the span of all split elements [s0, s1]
+   !> (mm, reference positions), the element counts before the first and
+   !> after the last, and the first sample of the pull history on
    !> the split mesh (the load-maximum criterion reads the history from
    !> there: the re-equilibrated state's force differs from the last one
    !> on the coarse mesh by the mapping's error, some 0.5%).
    type :: split_record
-      logical :: done = .false.
+      logical :: armed = .false.     ! the force has turned: splits are due
+      integer :: count = 0           ! splits done
       character(len=8) :: phase = ''
       real(dp) :: load = 0.0_dp, x_exit = 0.0_dp, zone(2) = 0.0_dp
       integer :: elements_before = 0, elements_after = 0
@@ -158,7 +160,7 @@ contains
       character(len=:), allocatable :: note
       character(len=160) :: buf
       note = ''
-      if (.not. rec%split%done) return
+      if (rec%split%count == 0) return
       write (buf, '(a,f0.4,a,i0,a,i0,a)') ' (on the mesh split at pull/h = ', rec%split%load/h, ': ', &
          rec%split%elements_after, ' elements, ', rec%split%elements_before, &
          ' before; the rows follow the mesh, docs/theory.md §7.6)'

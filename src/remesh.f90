@@ -38,7 +38,7 @@ module remesh
    private
    public :: split_nodes, split_field, station_weights, split_stations, split_elements, exit_pieces, &
              last_radius_exit
-   public :: exit_element_over_h, exit_zone_before, exit_zone_after
+   public :: exit_element_over_h, exit_zone_before, exit_zone_after, exit_resplit_before
 
    !> The neck's refinement on the default path (docs/theory.md §7.6):
    !> elements of exit_element_over_h h (the load maximum converges on
@@ -50,6 +50,10 @@ module remesh
    !> (bead A and B, steel, uniform and refined meshes).
    real(dp), parameter :: exit_element_over_h = 0.08_dp
    real(dp), parameter :: exit_zone_before = 3.0_dp, exit_zone_after = 0.5_dp
+   !> As the pull draws coarse elements toward the exit, they are split
+   !> again (over the same window) once one comes within
+   !> exit_resplit_before h before it: about every 1.5h of draw
+   real(dp), parameter :: exit_resplit_before = 1.5_dp
 
 contains
 
@@ -273,20 +277,21 @@ contains
 
    !> EXIT_PIECES: the parts each element is split into for the neck's
    !> refinement (module constants): an element whose current span meets
-   !> [x_exit - exit_zone_before h, x_exit + exit_zone_after h] is cut into
-   !> parts no longer than m%exit_element; the others stay whole.
+   !> [x_exit - before h, x_exit + exit_zone_after h] is cut into parts no
+   !> longer than m%exit_element; the others stay whole.
    !>  m       [in]  the model (m%exit_element > 0)
    !>  s       [in]  the converged state
    !>  x_exit  [in]  the exit of the last radius (last_radius_exit), mm
+   !>  before  [in]  the window's length before the exit, in h
    !>  pieces  (result) m%n_el parts, >= 1
-   pure function exit_pieces(m, s, x_exit) result(pieces)
+   pure function exit_pieces(m, s, x_exit, before) result(pieces)
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
-      real(dp), intent(in) :: x_exit
+      real(dp), intent(in) :: x_exit, before
       integer :: pieces(m%n_el)
       real(dp) :: lo, hi, xa, xb
       integer :: e
-      lo = x_exit - exit_zone_before*m%thickness
+      lo = x_exit - before*m%thickness
       hi = x_exit + exit_zone_after*m%thickness
       pieces = 1
       do e = 1, m%n_el

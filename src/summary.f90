@@ -99,6 +99,7 @@ contains
       character(len=:), allocatable, intent(out) :: iomsg
       character(len=:), allocatable :: text
       real(dp) :: h, eh, fsteady, steady_at, thinning, energy(5), pull_work, de(5)
+      logical :: split
       logical :: steady
       character(len=32) :: status
       ! (allocate, not text = '': gfortran 12 then warns that text may be
@@ -204,17 +205,19 @@ contains
          call add(text, 'coarse_assemblies = none')
       end if
       ! the elements split at the exit of the last radius (docs/theory.md §7.6)
-      if (rec%split%done) then
+      split = rec%split%count > 0
+      if (split) then
          call add(text, 'split_phase = '//trim(rec%split%phase))
       else
          call add(text, 'split_phase = none')
       end if
-      call put(text, 'split_load_over_h', rec%split%load/h, rec%split%done)
-      call put(text, 'split_exit_x_over_h', rec%split%x_exit/h, rec%split%done)
-      call put(text, 'split_from_over_h', rec%split%zone(1)/h, rec%split%done)
-      call put(text, 'split_to_over_h', rec%split%zone(2)/h, rec%split%done)
-      call put(text, 'split_force_change', rec%split%force_change, rec%split%done)
-      if (rec%split%done) then
+      call put(text, 'split_load_over_h', rec%split%load/h, split)
+      call put(text, 'split_exit_x_over_h', rec%split%x_exit/h, split)
+      call put(text, 'split_from_over_h', rec%split%zone(1)/h, split)
+      call put(text, 'split_to_over_h', rec%split%zone(2)/h, split)
+      call put(text, 'split_force_change', rec%split%force_change, split)
+      call add(text, 'split_count = '//itoa(rec%split%count))
+      if (split) then
          call add(text, 'split_elements_before = '//itoa(rec%split%elements_before))
       else
          call add(text, 'split_elements_before = none')
