@@ -2,8 +2,9 @@
 !> interoperability and without a shell: creating the output directory
 !> (a path is taken literally, never handed to a shell), the result files
 !> written by the system calls creat/write/pwrite/close/unlink, the text
-!> of errno, and the SIGTERM/SIGINT handler that asks the run to stop at
-!> the next converged increment.
+!> of errno, the input files read whole by fopen/fread (a pipe reads like
+!> a file: nothing seeks), and the SIGTERM/SIGINT handler that asks the
+!> run to stop at the next converged increment.
 !>
 !> Why result files do not use Fortran I/O: gfortran 12 reports success
 !> (iostat = 0) from a FLUSH or CLOSE whose write failed (ENOSPC on a full
@@ -22,6 +23,7 @@ module os
    private
    public :: make_directory, install_stop_handlers, stop_requested, signal_name
    public :: file_create, file_write, file_write_at, file_close, file_remove
+   public :: read_file, file_too_large
 
    !> POSIX signal numbers (the same on every Linux architecture)
    integer(c_int), parameter :: sigint = 2, sigterm = 15, sigxfsz = 25
@@ -33,6 +35,10 @@ module os
 
    !> errno of an interrupted system call (retried)
    integer(c_int), parameter :: eintr = 4
+   !> errno of a read from a directory, of an input/output error
+   integer(c_int), parameter :: eisdir = 21, eio = 5
+   !> read_file's stat for a file longer than its limit (not an errno)
+   integer, parameter :: file_too_large = -1
 
    interface
       function c_creat(path, mode) bind(C, name='creat') result(fd)
@@ -86,6 +92,28 @@ module os
          type(c_ptr), value :: s
          integer(c_size_t) :: n
       end function c_strlen
+      function c_fopen(path, mode) bind(C, name='fopen') result(fp)
+         import :: c_char, c_ptr
+         character(kind=c_char), intent(in) :: path(*), mode(*)
+         type(c_ptr) :: fp
+      end function c_fopen
+      function c_fread(buf, size, count, fp) bind(C, name='fread') result(n)
+         import :: c_char, c_size_t, c_ptr
+         character(kind=c_char), intent(out) :: buf(*)
+         integer(c_size_t), value :: size, count
+         type(c_ptr), value :: fp
+         integer(c_size_t) :: n
+      end function c_fread
+      function c_ferror(fp) bind(C, name='ferror') result(rc)
+         import :: c_int, c_ptr
+         type(c_ptr), value :: fp
+         integer(c_int) :: rc
+      end function c_ferror
+      function c_fclose(fp) bind(C, name='fclose') result(rc)
+         import :: c_int, c_ptr
+         type(c_ptr), value :: fp
+         integer(c_int) :: rc
+      end function c_fclose
       function c_signal(signum, handler) bind(C, name='signal') result(old)
          import :: c_int, c_funptr
          integer(c_int), value :: signum
@@ -246,6 +274,78 @@ contains
          end if
       end if
    end subroutine file_remove
+
+   !> READ_FILE: the whole of an input file as one string, read from its
+   !> start to its end (fopen/fread) and never positioned: a pipe,
+   !> /dev/stdin or a process substitution (bash's <(...)) reads like a
+   !> regular file, where a Fortran rewind or inquire(size=) fails with
+   !> "Illegal seek".  At most max_bytes are taken: a longer file (or an
+   !> endless one, /dev/zero) is refused after max_bytes + 1 bytes, so that
+   !> no input can hang the program or exhaust its memory.
+   !>  path       [in]  the file
+   !>  max_bytes  [in]  the largest file accepted, bytes (>= 0)
+   !>  text       [out] the file's bytes; length 0 when stat /= 0
+   !>  stat       [out] 0, an errno, or file_too_large
+   !>  msg        [out] the reason when stat /= 0: the system's words,
+   !>                   'is a directory, not a file', or 'larger than N
+   !>                   bytes'; '' otherwise
+   subroutine read_file(path, max_bytes, text, stat, msg)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: max_bytes
+      character(len=:), allocatable, intent(out) :: text
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: msg
+      integer, parameter :: chunk_len = 65536
+      character(kind=c_char, len=chunk_len) :: chunk
+      character(len=:), allocatable :: buf, grown
+      type(c_ptr) :: fp
+      integer :: total, n
+      text = ''
+      msg = ''
+      stat = 0
+      fp = c_fopen(trim(path)//c_null_char, 'r'//c_null_char)
+      if (.not. c_associated(fp)) then
+         stat = errno()
+         msg = errno_text(stat)
+         return
+      end if
+      allocate (character(len=chunk_len) :: buf)
+      total = 0
+      do
+         n = int(c_fread(chunk, 1_c_size_t, int(chunk_len, c_size_t), fp))
+         if (n > 0) then
+            ! keep one byte past the limit at most: enough to refuse the file
+            n = min(n, max_bytes + 1 - total)
+            if (total + n > len(buf)) then
+               allocate (character(len=max(2*len(buf), total + n)) :: grown)
+               grown(1:total) = buf(1:total)
+               call move_alloc(grown, buf)
+            end if
+            buf(total + 1:total + n) = chunk(1:n)
+            total = total + n
+         end if
+         if (total > max_bytes) then
+            stat = file_too_large
+            msg = 'larger than '//itoa(max_bytes)//' bytes'
+            exit
+         end if
+         if (n < chunk_len) then
+            ! a short read: the end of the file, or an error (ferror says)
+            if (c_ferror(fp) /= 0) then
+               stat = errno()
+               if (stat == 0) stat = eio
+               msg = errno_text(stat)
+               if (stat == eisdir) msg = 'is a directory, not a file'
+            end if
+            exit
+         end if
+      end do
+      if (c_fclose(fp) /= 0 .and. stat == 0) then
+         stat = errno()
+         msg = errno_text(stat)
+      end if
+      if (stat == 0) text = buf(1:total)
+   end subroutine read_file
 
    !> MAKE_ONE: mkdir of one path, mode 0777 (less the umask).
    !>  path  [in]  the directory

@@ -15,8 +15,18 @@ module text
    use kinds, only: dp
    implicit none
    private
-   public :: lower, read_line, load_text, strip_comment, split_fields, parse_real
+   public :: lower, read_line, next_line, first_long_line, strip_comment, split_fields, parse_real
    public :: itoa, num, file_exists
+   public :: max_input_bytes, max_line_length
+
+   !> The largest input file (deck, hardening curve, tool profile) the
+   !> program reads, bytes (16 MiB: a deck is a few kB, a curve or profile
+   !> of a million points fits); anything longer, /dev/zero included, is
+   !> refused before it can hang the program or fill its memory
+   !> (docs/input-reference.md).
+   integer, parameter :: max_input_bytes = 16*1024*1024
+   !> The longest line of an input file, characters (a 10 kB title fits)
+   integer, parameter :: max_line_length = 65536
 
 contains
 
@@ -65,30 +75,49 @@ contains
       end do
    end subroutine read_line
 
-   !> LOAD_TEXT: the whole of a file as one string.
-   !>  path  [in]  file name
-   !>  text  [out] the file's bytes (allocated, possibly of length 0)
-   !>  ios   [out] 0 on success, else the iostat of the failing statement
-   !>  msg   [out] the iomsg when ios /= 0
-   subroutine load_text(path, text, ios, msg)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable, intent(out) :: text
-      integer, intent(out) :: ios
-      character(len=*), intent(out) :: msg
-      integer :: u, n
-      msg = ''
-      text = ''
-      open (newunit=u, file=path, access='stream', form='unformatted', status='old', &
-            action='read', iostat=ios, iomsg=msg)
-      if (ios /= 0) return
-      inquire (unit=u, size=n)
-      if (n > 0) then
-         deallocate (text)
-         allocate (character(len=n) :: text)
-         read (u, iostat=ios, iomsg=msg) text
+   !> NEXT_LINE: the line of a text that starts at pos (a file read whole
+   !> by os's read_file), without its line feed; pos moves to the next line.
+   !> A last line without a line feed is a line.
+   !>  text  [in]     the whole text
+   !>  pos   [in,out] where the line starts (1 for the first); on return,
+   !>                 where the next one starts (> len(text) after the last)
+   !>  line  [out]    the line
+   pure subroutine next_line(text, pos, line)
+      character(len=*), intent(in) :: text
+      integer, intent(inout) :: pos
+      character(len=:), allocatable, intent(out) :: line
+      integer :: k
+      k = index(text(pos:), achar(10))
+      if (k == 0) then
+         line = text(pos:)
+         pos = len(text) + 1
+      else
+         line = text(pos:pos + k - 2)
+         pos = pos + k
       end if
-      close (u)
-   end subroutine load_text
+   end subroutine next_line
+
+   !> FIRST_LONG_LINE: the number of the first line of a text longer than
+   !> max_line_length characters (its line feed not counted), 0 if none.
+   !>  text  [in] the whole text
+   pure function first_long_line(text) result(lineno)
+      character(len=*), intent(in) :: text
+      integer :: lineno
+      integer :: pos, k, n
+      lineno = 0
+      pos = 1
+      n = 0
+      do while (pos <= len(text))
+         n = n + 1
+         k = index(text(pos:), achar(10))
+         if (k == 0) k = len(text) - pos + 2
+         if (k - 1 > max_line_length) then
+            lineno = n
+            return
+         end if
+         pos = pos + k
+      end do
+   end function first_long_line
 
    !> STRIP_COMMENT: the part of a line before a comment marker.
    !>  line    [in]  any text

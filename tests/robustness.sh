@@ -11,7 +11,9 @@
 #    the file and the system's reason named, status never completed;
 #  - -o is taken literally, no shell: '$(touch x)' is a directory name;
 #  - a large mesh (12000 elements) runs (no stack overflow);
-#  - the log ends with the status and the exit code.
+#  - the log ends with the status and the exit code;
+#  - a deck from a pipe (/dev/stdin, bash's <(...)) is read like a file:
+#    nothing seeks in it (issue 28, item 3).
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -51,6 +53,22 @@ expect 1 'text outside any namelist group' 'a profile file is not a deck' -- \
 expect 1 'text outside any namelist group' 'a gnuplot script is not a deck' -- \
     "$bin" scripts/plot_lock.gp
 expect 1 'text outside any namelist group' 'a binary file is not a deck' -- "$bin" "$bin"
+
+# a deck from a pipe: read whole once, never positioned (issue 28, item 3:
+# it was "Fortran runtime error: Illegal seek", exit 2)
+"$bin" "$deck" -o "$work/file" >/dev/null 2>&1
+cat "$deck" | "$bin" /dev/stdin -o "$work/stdin" >"$work/out" 2>&1
+status=$?
+if ((status == 0)) && cmp -s <(grep -v '^cpu' "$work/file/summary.txt") \
+    <(grep -v '^cpu' "$work/stdin/summary.txt"); then
+    ok "a deck piped to /dev/stdin runs as the file does (exit 0, same summary)"
+else
+    bad "a deck piped to /dev/stdin: exit $status"; sed 's/^/    /' "$work/out" | head -5
+fi
+expect 0 'done, exit code 0' 'a deck from a process substitution <(cat deck) runs' -- \
+    "$bin" <(cat "$deck") -o "$work/subst"
+expect 1 'no namelist group of the program' 'an empty pipe is not a deck' -- \
+    "$bin" <(true) -o "$work/empty_pipe"
 
 # the output directory belongs to the run
 mkdir -p "$work/stale"
