@@ -288,7 +288,7 @@ contains
    !>  stat       [out] 0, an errno, or file_too_large
    !>  msg        [out] the reason when stat /= 0: the system's words,
    !>                   'is a directory, not a file', or 'larger than N
-   !>                   bytes'; '' otherwise
+   !>                   bytes, ...'; '' otherwise
    subroutine read_file(path, max_bytes, text, stat, msg)
       character(len=*), intent(in) :: path
       integer, intent(in) :: max_bytes
@@ -326,7 +326,7 @@ contains
          end if
          if (total > max_bytes) then
             stat = file_too_large
-            msg = 'larger than '//itoa(max_bytes)//' bytes'
+            msg = 'larger than '//itoa(max_bytes)//' bytes, the most an input file may have'
             exit
          end if
          if (n < chunk_len) then

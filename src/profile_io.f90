@@ -17,11 +17,14 @@
 !> overall.  The radius is |start - centre|; |end - centre| must agree
 !> within 1e-6 relative.  Each piece must start within 1e-6 mm of the
 !> previous piece's end (it is then snapped onto it).  The chain is then
-!> validated as tool_init does.  Errors are reported as
+!> validated as tool_init does.  The file is read whole, at most text's
+!> max_input_bytes, lines at most max_line_length characters.  Errors are reported as
 !> '<path>:<line>: <what>' ('<path>: <what>' for the whole file).
 module profile_io
    use kinds, only: dp
-   use text, only: read_line, strip_comment, split_fields, parse_real, lower, itoa, num
+   use text, only: next_line, strip_comment, split_fields, parse_real, lower, itoa, num, &
+                   max_input_bytes, max_line_length
+   use os, only: read_file
    use tools, only: seg_line, segment_type, tool_type, line_segment, arc_segment, tool_init, &
                     check_chain, radius_tol
    implicit none
@@ -52,21 +55,22 @@ contains
       type(tool_type), intent(out) :: tool
       character(len=*), intent(out) :: errmsg
       integer, intent(out), optional :: stat
-      character(len=:), allocatable :: line
-      character(len=256) :: iomsg
+      character(len=:), allocatable :: contents, why, line
       type(segment_type), allocatable :: segs(:), tmp(:)
       integer, allocatable :: lineof(:), itmp(:)
       integer :: first(max_fields), last(max_fields)
-      integer :: unit, ios, lineno, ntok, nseg, side, nneed, k, ibad
+      integer :: ios, pos, lineno, ntok, nseg, side, nneed, k, ibad
       real(dp) :: v(6), gap
       character(len=16) :: key
       character(len=400) :: what
 
       errmsg = ''
       if (present(stat)) stat = 1
-      open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+      ! read whole, bounded: /dev/zero or a huge file is refused, not read
+      ! forever; a directory is named as such
+      call read_file(path, max_input_bytes, contents, ios, why)
       if (ios /= 0) then
-         errmsg = trim(path)//': cannot open: '//trim(iomsg)
+         errmsg = trim(path)//': cannot read: '//why
          return
       end if
       allocate (segs(16), lineof(16))
@@ -74,10 +78,14 @@ contains
       side = 0
       lineno = 0
       what = ''
-      do
-         call read_line(unit, line, ios, iomsg)
-         if (ios /= 0) exit
+      pos = 1
+      do while (pos <= len(contents))
+         call next_line(contents, pos, line)
          lineno = lineno + 1
+         if (len(line) > max_line_length) then
+            what = 'longer than '//itoa(max_line_length)//' characters'
+            exit
+         end if
          line = strip_comment(line, '#')
          call split_fields(line, first, last, ntok)
          if (ntok == 0) cycle
@@ -165,13 +173,8 @@ contains
          end if
          if (len_trim(what) > 0) exit
       end do
-      close (unit)
       if (len_trim(what) > 0) then
          errmsg = trim(path)//':'//itoa(lineno)//': '//trim(what)
-         return
-      end if
-      if (ios > 0) then
-         errmsg = trim(path)//':'//itoa(lineno + 1)//': read error: '//trim(iomsg)
          return
       end if
       if (side == 0) then

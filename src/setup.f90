@@ -190,7 +190,7 @@ contains
       type(tool_type), intent(out) :: upper, lower
       type(error_list), intent(inout) :: errs
 
-      character(len=300) :: errmsg
+      character(len=1024) :: errmsg
       character(len=:), allocatable :: ctx
       real(dp) :: margin
 
@@ -208,16 +208,16 @@ contains
       case ('profile')
          if (readable(d%upper_profile)) then
             call read_profile(trim(d%upper_profile), upper, errmsg)
-            if (len_trim(errmsg) == 0 .and. upper%side /= 1) errmsg = 'variable upper_profile: '// &
+            if (len_trim(errmsg) == 0 .and. upper%side /= 1) errmsg = &
                trim(d%upper_profile)//' is a lower tool (side lower)'
-            if (len_trim(errmsg) > 0) call add_error(errs, ctx//trim(errmsg))
+            if (len_trim(errmsg) > 0) call add_error(errs, ctx//'variable upper_profile: '//trim(errmsg))
          end if
          errmsg = ''
          if (readable(d%lower_profile)) then
             call read_profile(trim(d%lower_profile), lower, errmsg)
-            if (len_trim(errmsg) == 0 .and. lower%side /= -1) errmsg = 'variable lower_profile: '// &
+            if (len_trim(errmsg) == 0 .and. lower%side /= -1) errmsg = &
                trim(d%lower_profile)//' is an upper tool (side upper)'
-            if (len_trim(errmsg) > 0) call add_error(errs, ctx//trim(errmsg))
+            if (len_trim(errmsg) > 0) call add_error(errs, ctx//'variable lower_profile: '//trim(errmsg))
          end if
       end select
    end subroutine tools_of_deck

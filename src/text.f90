@@ -8,14 +8,13 @@
 !> digit and a finite value, so that list-directed input cannot take '/',
 !> 'T', 'nan' or 'inf' as a number.  The module holds no state.
 module text
-   use, intrinsic :: iso_fortran_env, only: iostat_end, iostat_eor
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use, intrinsic :: ieee_exceptions, only: ieee_usual, ieee_get_halting_mode, &
       ieee_set_halting_mode, ieee_set_flag
    use kinds, only: dp
    implicit none
    private
-   public :: lower, read_line, next_line, first_long_line, strip_comment, split_fields, parse_real
+   public :: lower, next_line, first_long_line, strip_comment, split_fields, parse_real
    public :: itoa, num, file_exists
    public :: max_input_bytes, max_line_length
 
@@ -43,37 +42,6 @@ contains
          if (c >= iachar('A') .and. c <= iachar('Z')) r(i:i) = achar(c + 32)
       end do
    end function lower
-
-   !> READ_LINE: one whole record of any length from a formatted sequential
-   !> unit.  A last line without an end-of-line marker is a line.
-   !>  unit   [in]  connected unit
-   !>  line   [out] the record, without the end-of-record marker
-   !>  iostat [out] 0 on success, iostat_end at the end of the file, else
-   !>               the error
-   !>  iomsg  [out] the message of a non-zero iostat
-   subroutine read_line(unit, line, iostat, iomsg)
-      integer, intent(in) :: unit
-      character(len=:), allocatable, intent(out) :: line
-      integer, intent(out) :: iostat
-      character(len=*), intent(out) :: iomsg
-      character(len=256) :: buf
-      integer :: nread
-      line = ''
-      iomsg = ''
-      do
-         read (unit, '(a)', advance='no', iostat=iostat, iomsg=iomsg, size=nread) buf
-         line = line//buf(:nread)
-         if (iostat == iostat_eor) then
-            iostat = 0
-            exit
-         else if (iostat == iostat_end .and. len(line) > 0) then
-            iostat = 0
-            exit
-         else if (iostat /= 0) then
-            exit
-         end if
-      end do
-   end subroutine read_line
 
    !> NEXT_LINE: the line of a text that starts at pos (a file read whole
    !> by os's read_file), without its line feed; pos moves to the next line.

@@ -13,7 +13,10 @@
 #  - a large mesh (12000 elements) runs (no stack overflow);
 #  - the log ends with the status and the exit code;
 #  - a deck from a pipe (/dev/stdin, bash's <(...)) is read like a file:
-#    nothing seeks in it (issue 28, item 3).
+#    nothing seeks in it (issue 28, item 3);
+#  - input files are bounded: /dev/zero as the deck, a deck larger than
+#    16 MiB or with a line longer than 65536 characters are refused at once
+#    (issue 28, item 4; the curve and profile files: tests/bad_decks.sh).
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -69,6 +72,17 @@ expect 0 'done, exit code 0' 'a deck from a process substitution <(cat deck) run
     "$bin" <(cat "$deck") -o "$work/subst"
 expect 1 'no namelist group of the program' 'an empty pipe is not a deck' -- \
     "$bin" <(true) -o "$work/empty_pipe"
+
+# bounded input (issue 28, item 4: /dev/zero as the deck hung, its memory
+# growing, and SIGTERM did not stop it); timeout makes a hang a failure
+expect 1 'larger than 16777216 bytes' '/dev/zero as the deck is refused at the size limit' -- \
+    timeout -k 2 30 "$bin" /dev/zero -o "$work/zero"
+{ cat "$deck"; head -c 17000000 /dev/zero | tr '\0' ' '; } >"$work/huge.nml"
+expect 1 'larger than 16777216 bytes' 'a deck of 17 MB is refused' -- \
+    timeout -k 2 30 "$bin" "$work/huge.nml" -o "$work/huge"
+{ cat "$deck"; printf '! %s\n' "$(head -c 70000 /dev/zero | tr '\0' x)"; } >"$work/long.nml"
+expect 1 'line 34: longer than 65536 characters' 'a deck line of 70000 characters is refused' -- \
+    timeout -k 2 30 "$bin" "$work/long.nml" -o "$work/long"
 
 # the output directory belongs to the run
 mkdir -p "$work/stale"
