@@ -9,14 +9,14 @@
 module setup
    use kinds, only: dp
    use errors, only: error_list, add_error
-   use text, only: lower, file_exists, num
+   use text, only: lower, file_exists, num, itoa
    use deck, only: deck_type, umat_props_given
    use controls, only: controls_type
    use model, only: model_type, model_init
    use hardening, only: read_curve_file, law_swift, law_voce, law_table, ip_law, ip_table_m
    use material_j2, only: ip_youngs, ip_poisson, ip_r_value, check_props
    use material, only: material_type, builtin_material, user_material, user_umat_linked
-   use tools, only: tool_type, tool_sample
+   use tools, only: tool_type, tool_sample, seg_arc
    use tool_distance, only: tool_gap
    use bead_builder, only: build_rectangular_bead
    use profile_io, only: read_profile
@@ -68,6 +68,7 @@ contains
       if (m%has_tools) then
          m%tool(1) = upper
          m%tool(2) = lower_tool
+         call check_element_length(d, m%x, upper, lower_tool, errs)
       end if
       ! contact (2.18)-(2.23): the penalty is given as k h / E, the lengths
       ! in units of h
@@ -275,6 +276,69 @@ contains
                      ' mm = '//num(worst/h)//' h near (x, y) = ('//num(at(1))//', '//num(at(2))// &
                      ') mm, where the physical gap must be at least the sheet thickness')
    end subroutine check_clearance
+
+   !> CHECK_ELEMENT_LENGTH: a mesh whose elements are longer than the
+   !> smallest radius of the tools is refused.  An element is one cubic in
+   !> each displacement: bent over a radius shorter than itself it cannot
+   !> follow the tool, its nodes cut the corner, and the run still ends
+   !> with a confident answer (issue 28: 2 elements of 25 h on bead A's
+   !> radii of 4.66 h gave status = localized at delta_cr = 1.43 h against
+   !> 2.09 h on 80 elements, with only a penetration warning).  The limit
+   !> is the element's length itself (not a fraction of it): the
+   !> refine_neck regression deck runs its first pass on elements of 3 h
+   !> over radii of 4.66 h, and its neck is where the fine mesh finds it.
+   !> The longest element of the whole mesh counts (with mesh_beta > 1
+   !> those are at the sheet's ends, which the pull brings toward the
+   !> bead).  Tools without arcs (sharp corners only) have no radius to
+   !> compare.
+   !>  d             [in]     the deck (for the message)
+   !>  x             [in]     the mesh's node positions, ascending, mm
+   !>  upper, lower  [in]     the tools at rest
+   !>  errs          [in,out] one error when an element is too long
+   subroutine check_element_length(d, x, upper, lower, errs)
+      type(deck_type), intent(in) :: d
+      real(dp), intent(in) :: x(:)
+      type(tool_type), intent(in) :: upper, lower
+      type(error_list), intent(inout) :: errs
+      real(dp) :: longest, radius, h
+      character(len=:), allocatable :: which
+      integer :: n_need
+      if (size(x) < 2) return
+      h = d%thickness
+      longest = maxval(x(2:) - x(:size(x) - 1))
+      if (d%bead == 'rectangular') then
+         radius = min(d%r1, d%r2)
+         which = merge('r1', 'r2', d%r1 <= d%r2)
+      else
+         radius = min(smallest_radius(upper), smallest_radius(lower))
+         if (radius >= huge(1.0_dp)) return
+         which = 'the smallest arc of profile '''//trim(merge(d%upper_profile, d%lower_profile, &
+                 smallest_radius(upper) <= smallest_radius(lower)))//''''
+      end if
+      ! 1e-9 relative: an element exactly as long as the radius is allowed
+      if (longest <= radius*(1.0_dp + 1.0e-9_dp)) return
+      ! graded_nodes' longest element, L (1 - (1 - 2/n)^beta), is at most
+      ! 2 L beta / n: this many elements are enough
+      n_need = ceiling(d%mesh_beta*d%length/radius)
+      call add_error(errs, "deck '"//trim(d%deck_file)//"', group &sheet, variable n_elements: "// &
+                     'elements of up to '//num(longest/h)//' h ('//num(longest)//' mm) are longer '// &
+                     'than the smallest tool radius, '//num(radius/h)//' h ('//num(radius)//' mm, '// &
+                     which//'): the sheet cannot follow the tools; give n_elements >= '// &
+                     itoa(n_need)//' for elements no longer than the radius')
+   end subroutine check_element_length
+
+   !> SMALLEST_RADIUS: the smallest arc radius of a tool, mm; huge() when
+   !> it has no arc.
+   !>  tool  [in] the tool
+   pure function smallest_radius(tool) result(r)
+      type(tool_type), intent(in) :: tool
+      real(dp) :: r
+      integer :: k
+      r = huge(1.0_dp)
+      do k = 1, tool%nseg
+         if (tool%seg(k)%kind == seg_arc) r = min(r, tool%seg(k)%radius)
+      end do
+   end function smallest_radius
 
    !> CONTROLS_OF_DECK: the step and output controls of a deck.
    !>  d    [in]  the deck
