@@ -3,7 +3,8 @@
 !> (a path is taken literally, never handed to a shell), the result files
 !> written by the system calls creat/write/pwrite/close/unlink, the text
 !> of errno, the input files read whole by fopen/fread (a pipe reads like
-!> a file: nothing seeks), and the SIGTERM/SIGINT handler that asks the
+!> a file: nothing seeks), the lock (flock) by which a run owns its output
+!> directory, and the SIGTERM/SIGINT handler that asks the
 !> run to stop at the next converged increment.
 !>
 !> Why result files do not use Fortran I/O: gfortran 12 reports success
@@ -23,7 +24,7 @@ module os
    private
    public :: make_directory, install_stop_handlers, stop_requested, signal_name
    public :: file_create, file_write, file_write_at, file_close, file_remove
-   public :: read_file, file_too_large
+   public :: read_file, file_too_large, lock_file, lock_busy
 
    !> POSIX signal numbers (the same on every Linux architecture)
    integer(c_int), parameter :: sigint = 2, sigterm = 15, sigxfsz = 25
@@ -39,6 +40,12 @@ module os
    integer(c_int), parameter :: eisdir = 21, eio = 5
    !> read_file's stat for a file longer than its limit (not an errno)
    integer, parameter :: file_too_large = -1
+   !> lock_file's stat for a lock another process holds (not an errno)
+   integer, parameter :: lock_busy = -2
+   !> errno of a lock held elsewhere (EWOULDBLOCK = EAGAIN on Linux)
+   integer(c_int), parameter :: ewouldblock = 11
+   !> flock(2) operation: exclusive, do not wait
+   integer(c_int), parameter :: lock_ex = 2, lock_nb = 4
 
    interface
       function c_creat(path, mode) bind(C, name='creat') result(fd)
@@ -114,6 +121,34 @@ module os
          type(c_ptr), value :: fp
          integer(c_int) :: rc
       end function c_fclose
+      function c_fileno(fp) bind(C, name='fileno') result(fd)
+         import :: c_int, c_ptr
+         type(c_ptr), value :: fp
+         integer(c_int) :: fd
+      end function c_fileno
+      function c_flock(fd, operation) bind(C, name='flock') result(rc)
+         import :: c_int
+         integer(c_int), value :: fd, operation
+         integer(c_int) :: rc
+      end function c_flock
+      function c_ftruncate(fd, length) bind(C, name='ftruncate') result(rc)
+         import :: c_int, c_long
+         integer(c_int), value :: fd
+         integer(c_long), value :: length
+         integer(c_int) :: rc
+      end function c_ftruncate
+      function c_pread(fd, buf, count, offset) bind(C, name='pread') result(n)
+         import :: c_int, c_char, c_size_t, c_long
+         integer(c_int), value :: fd
+         character(kind=c_char), intent(out) :: buf(*)
+         integer(c_size_t), value :: count
+         integer(c_long), value :: offset
+         integer(c_long) :: n
+      end function c_pread
+      function c_getpid() bind(C, name='getpid') result(pid)
+         import :: c_int
+         integer(c_int) :: pid
+      end function c_getpid
       function c_signal(signum, handler) bind(C, name='signal') result(old)
          import :: c_int, c_funptr
          integer(c_int), value :: signum
@@ -346,6 +381,63 @@ contains
       end if
       if (stat == 0) text = buf(1:total)
    end subroutine read_file
+
+   !> LOCK_FILE: take the exclusive lock (flock, without waiting) of a
+   !> file, created if missing, for the rest of the process, and write the
+   !> process id in it.  The file stays open until the process ends, and
+   !> the system releases the lock then, however the process ends (SIGKILL
+   !> included): a lock file left by a killed run is not held by anyone
+   !> and never blocks the next run, with no process id to check.
+   !>  path   [in]  the lock file
+   !>  stat   [out] 0 (the lock is this process's), lock_busy (another
+   !>               process holds it), or an errno
+   !>  msg    [out] with lock_busy: the holder's process id as written in
+   !>               the file ('' if it has not written it yet); with an
+   !>               errno: the system's reason; else ''
+   subroutine lock_file(path, stat, msg)
+      character(len=*), intent(in) :: path
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: msg
+      character(kind=c_char, len=24) :: buf
+      type(c_ptr) :: fp
+      integer(c_int) :: fd, rc
+      integer(c_long) :: n
+      character(len=:), allocatable :: why
+      msg = ''
+      stat = 0
+      ! "a+": created if missing, never truncated (the holder's id stays),
+      ! readable (the holder's id is read from it)
+      fp = c_fopen(trim(path)//c_null_char, 'a+'//c_null_char)
+      if (.not. c_associated(fp)) then
+         stat = errno()
+         msg = errno_text(stat)
+         return
+      end if
+      fd = c_fileno(fp)
+      if (c_flock(fd, ior(lock_ex, lock_nb)) /= 0) then
+         stat = errno()
+         if (stat == ewouldblock) then
+            stat = lock_busy
+            buf = ''
+            n = c_pread(fd, buf, int(len(buf), c_size_t), 0_c_long)
+            if (n > 0) msg = buf(1:min(int(n), len(buf)))
+            if (index(msg, achar(10)) > 0) msg = msg(1:index(msg, achar(10)) - 1)
+            if (verify(msg, '0123456789') /= 0) msg = ''
+         else
+            msg = errno_text(stat)
+         end if
+         rc = c_fclose(fp)
+         return
+      end if
+      ! the lock is ours: the file says who holds it (fp stays open)
+      if (c_ftruncate(fd, 0_c_long) /= 0) then
+         stat = errno()
+         msg = errno_text(stat)
+         return
+      end if
+      call write_all(int(fd), itoa(int(c_getpid()))//achar(10), -1, stat, why)
+      if (stat /= 0) msg = why
+   end subroutine lock_file
 
    !> MAKE_ONE: mkdir of one path, mode 0777 (less the umask).
    !>  path  [in]  the directory

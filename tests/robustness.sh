@@ -4,7 +4,10 @@
 #  - command line: exactly one deck, -o needs a value, unknown options,
 #    --help and --version;
 #  - the output directory belongs to the run: an earlier run's files are
-#    removed, summary.txt says status = running while the run goes;
+#    removed, summary.txt says status = running while the run goes; a
+#    second run into it is refused while the first goes, naming the
+#    directory and the first run's process id, and the lock of a killed
+#    run does not block the next (issue 28, item 2);
 #  - SIGTERM stops the run at a converged increment: status = interrupted,
 #    exit 4, every file so far on disk;
 #  - a failed write (a file-size limit, ulimit -f) stops the run: exit 3,
@@ -102,6 +105,28 @@ if tail -n 1 "$work/log" | grep -q '^# drawbead: done, exit code 0$'; then
 else
     bad "the log's last line is not the status: $(tail -n 1 "$work/log")"
 fi
+
+# one run per output directory (issue 28, item 2: two runs into one
+# directory both ended with exit 0, their files mixed)
+"$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/own" >"$work/own.log" 2>&1 &
+pid=$!
+for _ in $(seq 100); do
+    grep -q 'increments = *[1-9]' "$work/own/summary.txt" 2>/dev/null && break
+    sleep 0.02
+done
+expect 1 "output directory $work/own is in use by another run of drawbead (process id $pid)" \
+    'a second run into a directory in use is refused, naming it and the first run' -- \
+    "$bin" "$deck" -o "$work/own"
+if head -n 1 "$work/own/lock.dat" | grep -q 'Fig. 7b' &&
+    grep -q '^status = running$' "$work/own/summary.txt"; then
+    ok "the refused run left the first run's files alone"
+else
+    bad "the refused run wrote into the first run's directory"
+fi
+kill -KILL "$pid"
+wait "$pid" 2>/dev/null
+expect 0 'done, exit code 0' 'the lock of a killed run does not block the next run' -- \
+    "$bin" "$deck" -o "$work/own"
 
 # SIGTERM: status running while the run goes, interrupted after
 "$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/term" >"$work/term.log" 2>&1 &
