@@ -19,12 +19,13 @@
 module os
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_ptr, c_funptr, &
       c_funloc, c_associated, c_f_pointer, c_size_t, c_long
-   use text, only: itoa
+   use kinds, only: dp
+   use text, only: itoa, next_line
    implicit none
    private
    public :: make_directory, install_stop_handlers, stop_requested, signal_name
    public :: file_create, file_write, file_write_at, file_close, file_remove
-   public :: read_file, file_too_large, lock_file, lock_busy
+   public :: read_file, file_too_large, lock_file, lock_busy, memory_room
 
    !> POSIX signal numbers (the same on every Linux architecture)
    integer(c_int), parameter :: sigint = 2, sigterm = 15, sigxfsz = 25
@@ -145,6 +146,16 @@ module os
          integer(c_long), value :: offset
          integer(c_long) :: n
       end function c_pread
+      function c_getrlimit(resource, limits) bind(C, name='getrlimit') result(rc)
+         import :: c_int, c_long
+         integer(c_int), value :: resource
+         integer(c_long), intent(out) :: limits(2)
+         integer(c_int) :: rc
+      end function c_getrlimit
+      function c_getpagesize() bind(C, name='getpagesize') result(n)
+         import :: c_int
+         integer(c_int) :: n
+      end function c_getpagesize
       function c_getpid() bind(C, name='getpid') result(pid)
          import :: c_int
          integer(c_int) :: pid
@@ -438,6 +449,56 @@ contains
       call write_all(int(fd), itoa(int(c_getpid()))//achar(10), -1, stat, why)
       if (stat /= 0) msg = why
    end subroutine lock_file
+
+   !> MEMORY_ROOM: how much more memory this process can have, bytes: the
+   !> address-space limit (getrlimit RLIMIT_AS, `ulimit -v`) less what the
+   !> process maps already (/proc/self/statm), and the machine's memory
+   !> and swap (/proc/meminfo MemTotal + SwapTotal); the smaller of the two
+   !> and which it is.  Either is left out when unknown or unlimited.
+   !>  room  [out] bytes; huge() when neither is known
+   !>  what  [out] 'the address-space limit (ulimit -v)', 'the machine's
+   !>              memory and swap', or '' when room = huge()
+   subroutine memory_room(room, what)
+      real(dp), intent(out) :: room
+      character(len=:), allocatable, intent(out) :: what
+      !> RLIMIT_AS on Linux
+      integer(c_int), parameter :: rlimit_as = 9
+      integer(c_long) :: limits(2)
+      character(len=:), allocatable :: text, why, line
+      real(dp) :: mapped, total, kb
+      integer :: stat, pos, k, ios
+      room = huge(1.0_dp)
+      what = ''
+      ! the address-space limit (RLIM_INFINITY reads as -1)
+      if (c_getrlimit(rlimit_as, limits) == 0 .and. limits(1) > 0) then
+         call read_file('/proc/self/statm', 4096, text, stat, why)
+         mapped = 0.0_dp
+         if (stat == 0) then
+            read (text, *, iostat=ios) mapped
+            if (ios /= 0) mapped = 0.0_dp
+            mapped = mapped*real(c_getpagesize(), dp)
+         end if
+         room = real(limits(1), dp) - mapped
+         what = 'the address-space limit (ulimit -v)'
+      end if
+      ! the machine
+      call read_file('/proc/meminfo', 65536, text, stat, why)
+      if (stat /= 0) return
+      total = 0.0_dp
+      pos = 1
+      do while (pos <= len(text))
+         call next_line(text, pos, line)
+         k = index(line, ':')
+         if (k == 0) cycle
+         if (line(1:k) /= 'MemTotal:' .and. line(1:k) /= 'SwapTotal:') cycle
+         read (line(k + 1:), *, iostat=ios) kb
+         if (ios == 0) total = total + 1024.0_dp*kb
+      end do
+      if (total > 0.0_dp .and. total < room) then
+         room = total
+         what = 'the machine''s memory and swap'
+      end if
+   end subroutine memory_room
 
    !> MAKE_ONE: mkdir of one path, mode 0777 (less the umask).
    !>  path  [in]  the directory

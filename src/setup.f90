@@ -20,6 +20,12 @@ module setup
    use tool_distance, only: tool_gap
    use bead_builder, only: build_rectangular_bead
    use profile_io, only: read_profile
+   use os, only: memory_room
+   use section, only: n_hist
+   use contact, only: n_chist
+   use element, only: n_gp
+   use hermite, only: n_gauss
+   use mesh, only: dofs_per_node, half_band
    implicit none
    private
    public :: setup_run, material_constants, material_of_deck
@@ -64,6 +70,7 @@ contains
       else
          call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, mat)
       end if
+      call check_memory(d, m%n_el, d%thickness_points, errs)
       m%has_tools = d%bead /= 'none'
       if (m%has_tools) then
          m%tool(1) = upper
@@ -326,6 +333,71 @@ contains
                      which//'): the sheet cannot follow the tools; give n_elements >= '// &
                      itoa(n_need)//' for elements no longer than the radius')
    end subroutine check_element_length
+
+   !> RUN_MEMORY: an estimate of the memory a run takes, bytes: the arrays
+   !> that grow with the mesh (model's state_init: the material history
+   !> hn, h1 and the contact history cn, c1, the station results, the
+   !> displacements; solver's per-element work arrays of an assembly; the
+   !> band matrix, LDA 3 half_band + 1; the increment loop's vectors; the
+   !> text of a strain file, 1504 bytes per element), plus 8 MiB for the
+   !> program's fixed part (tools, records, I/O buffers).  On 20000
+   !> elements (21 stations) it says 473 MiB beyond what the program maps
+   !> at set-up; the run went through under ulimit -v 490000 (462 MiB
+   !> beyond) and failed in an allocation under 470000 (453 MiB).
+   !>  n_el  [in] elements of the run's mesh
+   !>  npt   [in] Simpson stations through the thickness
+   pure function run_memory(n_el, npt) result(bytes)
+      integer, intent(in) :: n_el, npt
+      real(dp) :: bytes, per_element, per_dof, n_dof
+      n_dof = real(dofs_per_node, dp)*real(n_el + 1, dp)
+      ! real64 words per element: state, then one assembly's work arrays
+      per_element = real(n_gauss, dp)*(2.0_dp*real(npt*n_hist, dp) + 4.0_dp*real(n_chist, dp) + &
+                                       2.0_dp*real(n_gp, dp) + 2.0_dp) &
+                    + 8.0_dp + 64.0_dp + 3.0_dp + 4.0_dp*real(n_gauss, dp) &
+                    + real(n_gauss*npt, dp) &         ! the plastic flags (two logical arrays)
+                    + 188.0_dp                         ! the text of a strain file's rows
+      ! per dof: u, u1, the band matrix, the increment loop's and loads' vectors
+      per_dof = 2.0_dp + real(3*half_band + 1, dp) + 0.5_dp + 6.0_dp
+      bytes = 8.0_dp*(per_element*real(n_el, dp) + per_dof*n_dof) + 8.0_dp*1024.0_dp**2
+   end function run_memory
+
+   !> CHECK_MEMORY: a mesh whose run cannot fit in the memory this process
+   !> may have (os's memory_room: the address-space limit, ulimit -v, or
+   !> the machine's memory and swap) is refused at set-up, naming
+   !> n_elements and the estimate, instead of failing in an allocation
+   !> with a run-time error and a backtrace (issue 28, item 6).
+   !>  d      [in]     the deck (for the message)
+   !>  n_el   [in]     elements of the run's mesh (more than n_elements
+   !>                  with a refined zone)
+   !>  npt    [in]     Simpson stations through the thickness
+   !>  errs   [in,out] one error when the run cannot fit
+   subroutine check_memory(d, n_el, npt, errs)
+      type(deck_type), intent(in) :: d
+      integer, intent(in) :: n_el, npt
+      type(error_list), intent(inout) :: errs
+      real(dp) :: need, room
+      character(len=:), allocatable :: what, mesh
+      need = run_memory(n_el, npt)
+      call memory_room(room, what)
+      if (need <= room) return
+      mesh = itoa(n_el)//' elements'
+      if (n_el /= d%n_elements) mesh = mesh//' with the refined zone'
+      call add_error(errs, "deck '"//trim(d%deck_file)//"', group &sheet, variable n_elements: "// &
+                     'n_elements = '//itoa(d%n_elements)//' ('//mesh//', thickness_points = '// &
+                     itoa(npt)//') needs about '//mebibytes(need)//' of memory, more than the '// &
+                     mebibytes(max(room, 0.0_dp))//' '//what//' leaves the run: give fewer '// &
+                     'elements or thickness points, or more memory')
+   end subroutine check_memory
+
+   !> MEBIBYTES: a number of bytes as text in MiB ('123.4 MiB').
+   !>  bytes  [in] the number
+   pure function mebibytes(bytes) result(text)
+      real(dp), intent(in) :: bytes
+      character(len=:), allocatable :: text
+      character(len=32) :: buf
+      write (buf, '(f0.1)') bytes/1024.0_dp**2
+      text = trim(buf)//' MiB'
+   end function mebibytes
 
    !> SMALLEST_RADIUS: the smallest arc radius of a tool, mm; huge() when
    !> it has no arc.

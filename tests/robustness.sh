@@ -169,6 +169,15 @@ else
     bad "-o '\$(touch x)' was handed to a shell"
 fi
 
+# a mesh that cannot fit in the memory the run may have is refused at
+# set-up, naming n_elements and the estimate (issue 28, item 6: gfortran's
+# "Error allocating ... bytes" and a backtrace, exit 1 as for bad input)
+in_40mb() { (ulimit -v 40000 && exec "$@"); }
+printf '&sheet n_elements = 20000 /\n&loading pull_distance = 0.02 /\n' >"$work/oom.nml"
+expect 1 "variable n_elements: n_elements = 20000 (20000 elements, thickness_points = 21) needs about" \
+    'a mesh beyond the address-space limit (ulimit -v 40000) is refused at set-up' -- \
+    in_40mb "$bin" "$work/oom.nml" -o "$work/oom"
+
 # a large mesh runs (no stack overflow)
 printf '&sheet n_elements = 12000 /\n&loading pull_distance = 0.02 /\n' >"$work/big.nml"
 expect 0 'done, exit code 0' 'a 12000-element mesh runs' -- "$bin" "$work/big.nml" -o "$work/big"
