@@ -2,21 +2,26 @@
 !> variables.
 !>
 !> As in WRF: defaults are assigned before reading (the deck_type's
-!> initial values), each group is read after a rewind (order does not
+!> initial values), each group is read on its own (order does not
 !> matter), a missing group means defaults, every problem is collected into
 !> an error_list (nothing stops here) and the resolved values are echoed
 !> with write(nml=).  A group that fails to read is re-read one assignment
 !> at a time (deck_scan), so that each bad variable is named.
 !>
+!> The deck file is read once, whole (os's read_file, at most
+!> max_input_bytes), and each group is read from its text as found by
+!> deck_scan, never from the file again: nothing seeks, so a deck from a
+!> pipe, /dev/stdin or bash's <(...) reads like any file.
+!>
 !> The namelist variables live only in the private per-group routines
 !> nml_control ... nml_loading, which copy between them and a deck_type.
 module deck_reader
-   use, intrinsic :: iso_fortran_env, only: iostat_end
    use, intrinsic :: ieee_exceptions, only: ieee_usual, ieee_get_halting_mode, &
       ieee_set_halting_mode, ieee_set_flag
    use kinds, only: dp
    use errors, only: error_list, add_error, warn
-   use text, only: lower, load_text, itoa
+   use text, only: lower, itoa, max_input_bytes, max_line_length, first_long_line
+   use os, only: read_file
    use deck, only: deck_type, group_names, resolve_defaults, validate_deck, max_umat_props
    use deck_scan, only: group_text, scan_groups, split_assignments, check_repeated, clip, &
                         strip_separators, is_letter
@@ -28,7 +33,7 @@ module deck_reader
    integer, parameter :: echo_len = 1024, echo_rows = 64
 
    !> What a per-group namelist routine does.
-   integer, parameter :: act_read_unit = 1, act_read_text = 2, act_write = 3
+   integer, parameter :: act_read_text = 1, act_write = 2
 
 contains
 
@@ -46,10 +51,9 @@ contains
       type(deck_type), intent(out) :: d
       type(error_list), intent(inout) :: errs
 
-      character(len=:), allocatable :: text
+      character(len=:), allocatable :: text, why
       type(group_text) :: found(size(group_names))
-      character(len=512) :: msg
-      integer :: u, ios, g
+      integer :: ios, g
 
       d%deck_file = path
       if (len_trim(path) >= len(d%deck_file)) then
@@ -59,9 +63,19 @@ contains
          return
       end if
 
-      call load_text(path, text, ios, msg)
+      ! the deck is read once, whole, into memory, and every group is read
+      ! from that text: nothing seeks, so a pipe or /dev/stdin is a deck
+      ! like any file (a rewind of a pipe is gfortran's "Illegal seek")
+      call read_file(path, max_input_bytes, text, ios, why)
       if (ios /= 0) then
-         call add_error(errs, "deck '"//trim(path)//"': cannot read the file ("//trim(msg)//")")
+         call add_error(errs, "deck '"//trim(path)//"': cannot read the file ("//why//")")
+         call resolve_defaults(d)
+         return
+      end if
+      ios = first_long_line(text)
+      if (ios > 0) then
+         call add_error(errs, "deck '"//trim(path)//"', line "//itoa(ios)//": longer than "// &
+                        itoa(max_line_length)//" characters: not a drawbead deck")
          call resolve_defaults(d)
          return
       end if
@@ -70,17 +84,9 @@ contains
          "': no namelist group of the program (&control, &sheet, &material, &tools, &loading):"// &
          ' not a drawbead deck')
 
-      msg = ''
-      open (newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call add_error(errs, "deck '"//trim(path)//"': cannot open the file ("//trim(msg)//")")
-         call resolve_defaults(d)
-         return
-      end if
       do g = 1, size(group_names)
-         call read_group(d, trim(group_names(g)), u, path, found(g), errs)
+         call read_group(d, trim(group_names(g)), path, found(g), errs)
       end do
-      close (u)
 
       d%left_edge = lower(adjustl(d%left_edge))
       d%normal_stress = lower(adjustl(d%normal_stress))
@@ -113,7 +119,7 @@ contains
       if (len_trim(d%deck_file) > 0) write (unit, '(a)') "! deck '"//trim(d%deck_file)//"'"
       do g = 1, size(group_names)
          msg = ''
-         call group_io(trim(group_names(g)), work, act_write, 0, '', ios, msg, lines)
+         call group_io(trim(group_names(g)), work, act_write, '', ios, msg, lines)
          if (ios == 0) then
             call put_lines(unit, lines)
          else
@@ -142,7 +148,7 @@ contains
 
       do g = 1, size(group_names)
          msg = ''
-         call group_io(trim(group_names(g)), defaults, act_write, 0, '', ios, msg, lines)
+         call group_io(trim(group_names(g)), defaults, act_write, '', ios, msg, lines)
          if (ios /= 0) return
          do k = 1, size(lines)
             eq = index(lines(k), '=')
@@ -168,17 +174,16 @@ contains
    !>
    !> group   [in]     group name without '&', lower case.
    !> d       [in,out] the deck; changed only by a successful read.
-   !> action  [in]     act_read_unit, act_read_text or act_write.
-   !> unit    [in]     unit to read (act_read_unit only).
+   !> action  [in]     act_read_text or act_write.
    !> text    [in]     '&group ... /' for act_read_text, else unused.
    !> ios     [out]    iostat of the transfer (0 = success).
    !> msg     [in,out] iomsg of the transfer, set only when ios /= 0.
    !> lines   [out]    act_write: the group as write(nml=) gives it, one
    !>                  record per line (blank padded); else blank.
-   subroutine group_io(group, d, action, unit, text, ios, msg, lines)
+   subroutine group_io(group, d, action, text, ios, msg, lines)
       character(len=*), intent(in) :: group
       type(deck_type), intent(inout) :: d
-      integer, intent(in) :: action, unit
+      integer, intent(in) :: action
       character(len=*), intent(in) :: text
       integer, intent(out) :: ios
       character(len=*), intent(inout) :: msg
@@ -193,15 +198,15 @@ contains
       call ieee_set_halting_mode(ieee_usual, .false.)
       select case (group)
       case ('control')
-         call nml_control(d, action, unit, text, ios, msg, lines)
+         call nml_control(d, action, text, ios, msg, lines)
       case ('sheet')
-         call nml_sheet(d, action, unit, text, ios, msg, lines)
+         call nml_sheet(d, action, text, ios, msg, lines)
       case ('material')
-         call nml_material(d, action, unit, text, ios, msg, lines)
+         call nml_material(d, action, text, ios, msg, lines)
       case ('tools')
-         call nml_tools(d, action, unit, text, ios, msg, lines)
+         call nml_tools(d, action, text, ios, msg, lines)
       case ('loading')
-         call nml_loading(d, action, unit, text, ios, msg, lines)
+         call nml_loading(d, action, text, ios, msg, lines)
       case default
          ios = -999
          msg = 'no such group &'//group
@@ -211,9 +216,9 @@ contains
    end subroutine group_io
 
    !> nml_control -- namelist &control (arguments as group_io).
-   subroutine nml_control(d, action, unit, text, ios, msg, lines)
+   subroutine nml_control(d, action, text, ios, msg, lines)
       type(deck_type), intent(inout) :: d
-      integer, intent(in) :: action, unit
+      integer, intent(in) :: action
       character(len=*), intent(in) :: text
       integer, intent(out) :: ios
       character(len=*), intent(inout) :: msg
@@ -237,8 +242,6 @@ contains
       fold_curvature = d%fold_curvature
       snapshot_every = d%snapshot_every
       select case (action)
-      case (act_read_unit)
-         read (unit, nml=control, iostat=ios, iomsg=msg)
       case (act_read_text)
          read (text, nml=control, iostat=ios, iomsg=msg)
       case default
@@ -258,9 +261,9 @@ contains
    end subroutine nml_control
 
    !> nml_sheet -- namelist &sheet (arguments as group_io).
-   subroutine nml_sheet(d, action, unit, text, ios, msg, lines)
+   subroutine nml_sheet(d, action, text, ios, msg, lines)
       type(deck_type), intent(inout) :: d
-      integer, intent(in) :: action, unit
+      integer, intent(in) :: action
       character(len=*), intent(in) :: text
       integer, intent(out) :: ios
       character(len=*), intent(inout) :: msg
@@ -288,8 +291,6 @@ contains
       refine_neck = d%refine_neck
       refine_exit = d%refine_exit
       select case (action)
-      case (act_read_unit)
-         read (unit, nml=sheet, iostat=ios, iomsg=msg)
       case (act_read_text)
          read (text, nml=sheet, iostat=ios, iomsg=msg)
       case default
@@ -313,9 +314,9 @@ contains
    end subroutine nml_sheet
 
    !> nml_material -- namelist &material (arguments as group_io).
-   subroutine nml_material(d, action, unit, text, ios, msg, lines)
+   subroutine nml_material(d, action, text, ios, msg, lines)
       type(deck_type), intent(inout) :: d
-      integer, intent(in) :: action, unit
+      integer, intent(in) :: action
       character(len=*), intent(in) :: text
       integer, intent(out) :: ios
       character(len=*), intent(inout) :: msg
@@ -346,8 +347,6 @@ contains
       curve_file = d%curve_file
       thickness_points = d%thickness_points
       select case (action)
-      case (act_read_unit)
-         read (unit, nml=material, iostat=ios, iomsg=msg)
       case (act_read_text)
          read (text, nml=material, iostat=ios, iomsg=msg)
       case default
@@ -372,9 +371,9 @@ contains
    end subroutine nml_material
 
    !> nml_tools -- namelist &tools (arguments as group_io).
-   subroutine nml_tools(d, action, unit, text, ios, msg, lines)
+   subroutine nml_tools(d, action, text, ios, msg, lines)
       type(deck_type), intent(inout) :: d
-      integer, intent(in) :: action, unit
+      integer, intent(in) :: action
       character(len=*), intent(in) :: text
       integer, intent(out) :: ios
       character(len=*), intent(inout) :: msg
@@ -401,8 +400,6 @@ contains
       friction_eps = d%friction_eps
       contact_smoothing = d%contact_smoothing
       select case (action)
-      case (act_read_unit)
-         read (unit, nml=tools, iostat=ios, iomsg=msg)
       case (act_read_text)
          read (text, nml=tools, iostat=ios, iomsg=msg)
       case default
@@ -426,9 +423,9 @@ contains
    end subroutine nml_tools
 
    !> nml_loading -- namelist &loading (arguments as group_io).
-   subroutine nml_loading(d, action, unit, text, ios, msg, lines)
+   subroutine nml_loading(d, action, text, ios, msg, lines)
       type(deck_type), intent(inout) :: d
-      integer, intent(in) :: action, unit
+      integer, intent(in) :: action
       character(len=*), intent(in) :: text
       integer, intent(out) :: ios
       character(len=*), intent(inout) :: msg
@@ -452,8 +449,6 @@ contains
       max_force_change = d%max_force_change
       step_tolerance = d%step_tolerance
       select case (action)
-      case (act_read_unit)
-         read (unit, nml=loading, iostat=ios, iomsg=msg)
       case (act_read_text)
          read (text, nml=loading, iostat=ios, iomsg=msg)
       case default
@@ -497,53 +492,43 @@ contains
       end do
    end subroutine put_lines
 
-   !> read_group -- read one namelist group from the deck, diagnosing errors.
+   !> read_group -- read one namelist group from the deck's text, diagnosing
+   !> errors.
    !>
    !> d      [in,out] the deck; takes the values of the group.
    !> group  [in]     group name, lower case, without '&'.
-   !> unit   [in]     the deck, open for formatted sequential reading.
    !> path   [in]     deck name, for messages.
-   !> gt     [in]     what scan_groups found for this group.
+   !> gt     [in]     what scan_groups found for this group: its body is
+   !>                 read (a missing group leaves the defaults).
    !> errs   [in,out] problems are appended.
-   subroutine read_group(d, group, unit, path, gt, errs)
+   subroutine read_group(d, group, path, gt, errs)
       type(deck_type), intent(inout) :: d
       character(len=*), intent(in) :: group
-      integer, intent(in) :: unit
       character(len=*), intent(in) :: path
       type(group_text), intent(in) :: gt
       type(error_list), intent(inout) :: errs
 
       character(len=echo_len) :: lines(echo_rows)
-      character(len=512) :: msg, text_msg
+      character(len=512) :: msg
       integer :: ios, n_before
 
+      if (.not. gt%present) return   ! group absent: defaults
+      call check_repeated(group, gt%body, path, errs)
       msg = ''
-      if (gt%present) call check_repeated(group, gt%body, path, errs)
-      rewind (unit)
-      call group_io(group, d, act_read_unit, unit, '', ios, msg, lines)
-      if (ios == 0) return
-      if (ios == iostat_end .and. .not. gt%present) return   ! group absent: defaults
-
-      ! gfortran gives end-of-file when the '/' is on a last line without a
-      ! newline: a complete group that reads from its own text is fine.
-      if (gt%present .and. gt%terminated) then
-         text_msg = ''
-         call group_io(group, d, act_read_text, 0, '&'//group//' '//gt%body//' /', ios, text_msg, &
-                       lines)
+      if (gt%terminated) then
+         call group_io(group, d, act_read_text, '&'//group//' '//gt%body//' /', ios, msg, lines)
          if (ios == 0) return
+      else
+         ! no '/': only an old-style '&end' in the body can end the group
+         call group_io(group, d, act_read_text, '&'//group//' '//gt%body, ios, msg, lines)
+         if (ios == 0) return
+         call add_error(errs, "deck '"//trim(path)//"', group &"//group// &
+                        ": no '/' ends the group")
       end if
 
       n_before = errs%count
-      if (.not. gt%present) then
-         call add_error(errs, "deck '"//trim(path)//"', group &"//group// &
-                        ": cannot read the group ("//trim(msg)//")")
-         return
-      end if
-      if (.not. gt%terminated) &
-         call add_error(errs, "deck '"//trim(path)//"', group &"//group// &
-                        ": no '/' ends the group")
       call diagnose_group(d, group, gt%body, path, errs)
-      if (errs%count == n_before) &
+      if (errs%count == n_before .and. gt%terminated) &
          call add_error(errs, "deck '"//trim(path)//"', group &"//group// &
                         ": cannot read the group ("//trim(msg)//")")
    end subroutine read_group
@@ -596,13 +581,13 @@ contains
             cycle
          end if
          msg = ''
-         call group_io(group, d, act_read_text, 0, '&'//group//' '//body(starts(k):last)//' /', &
+         call group_io(group, d, act_read_text, '&'//group//' '//body(starts(k):last)//' /', &
                        ios, msg, lines)
          if (ios == 0) cycle
 
          ! is the name known? a null value ('name = /') reads for any known name
          name_msg = ''
-         call group_io(group, d, act_read_text, 0, '&'//group//' '//var//' = /', name_ios, &
+         call group_io(group, d, act_read_text, '&'//group//' '//var//' = /', name_ios, &
                        name_msg, lines)
          if (name_ios /= 0 .and. index(name_msg, no_match) == 1) then
             call add_error(errs, ctx//", variable "//var//": unknown variable ("// &

@@ -19,7 +19,7 @@ program drawbead
    use analysis, only: run_phase
    use text, only: itoa
    use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools, remove_results, &
-                     open_snapshots
+                     open_snapshots, claim_output_dir
    use summary, only: write_summary
    use os, only: install_stop_handlers
    use solver, only: default_threads
@@ -57,6 +57,9 @@ program drawbead
       d%output_dir = out_override
       ctl%output_dir = out_override
    end if
+   ! one run per output directory (a lock released when the program ends)
+   call claim_output_dir(trim(ctl%output_dir), errmsg)
+   if (len_trim(errmsg) > 0) call output_dir_error(trim(d%deck_file), trim(errmsg))
    call cpu_time(t_start)
    write (output_unit, '(a)') '# drawbead: '//trim(ctl%title)
    call echo_deck(d, output_unit)

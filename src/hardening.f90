@@ -24,7 +24,9 @@
 module hardening
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
-   use text, only: read_line, strip_comment, split_fields, parse_real, itoa, num
+   use text, only: next_line, strip_comment, split_fields, parse_real, itoa, num, &
+                   max_input_bytes, max_line_length
+   use os, only: read_file
    implicit none
    private
 
@@ -354,7 +356,10 @@ contains
    !> a data line; columns may be separated by blanks, tabs or commas.
    !> Checks: every data line holds exactly two numbers; at least 2 points;
    !> the first plastic strain is 0; plastic strain strictly increasing;
-   !> stress positive and non-decreasing.  Never stops the program.
+   !> stress positive and non-decreasing.  The file is read whole, at most
+   !> text's max_input_bytes, lines at most max_line_length characters (a
+   !> longer file, /dev/zero, a directory are refused by name).  Never stops
+   !> the program.
    !>
    !> path   [in]  file name.
    !> ep     [out] plastic strains (allocated; size 0 on error).
@@ -370,12 +375,11 @@ contains
       real(dp), allocatable, intent(out) :: ep(:), sigma(:)
       character(len=*), intent(out) :: errmsg
 
-      character(len=:), allocatable :: line, at, msg
+      character(len=:), allocatable :: contents, why, line, at, msg
       character(len=64) :: tok(2), prev(2)
-      character(len=256) :: iomsg
       real(dp), allocatable :: tmp(:)
       real(dp) :: x(2)
-      integer :: unit, ios, nline, npt, ntok, k, first(2), last(2)
+      integer :: ios, pos, nline, npt, ntok, k, first(2), last(2)
 
       msg = ''
       prev = ''
@@ -383,19 +387,24 @@ contains
       npt = 0
       nline = 0
 
-      open (newunit=unit, file=path, status='old', action='read', form='formatted', &
-            iostat=ios, iomsg=iomsg)
+      ! read whole, bounded (a pipe reads like a file; /dev/zero or a huge
+      ! file is refused, not read forever; a directory is named as such)
+      call read_file(path, max_input_bytes, contents, ios, why)
       if (ios /= 0) then
-         errmsg = "cannot open curve file '" // path // "': " // trim(iomsg)
+         errmsg = "cannot read curve file '" // path // "': " // why
          call fail()
          return
       end if
 
-      do
-         call read_line(unit, line, ios, iomsg)
-         if (ios /= 0) exit
+      pos = 1
+      do while (pos <= len(contents))
+         call next_line(contents, pos, line)
          nline = nline + 1
          at = "curve file '" // path // "' line " // itoa(nline) // ': '
+         if (len(line) > max_line_length) then
+            msg = at // 'longer than ' // itoa(max_line_length) // ' characters'
+            exit
+         end if
          line = strip_comment(line, '#')
          call split_fields(line, first, last, ntok)
          if (ntok == 0) cycle
@@ -440,14 +449,9 @@ contains
          prev = tok
       end do
 
-      if (len(msg) == 0 .and. .not. is_iostat_end(ios)) then
-         msg = "curve file '" // path // "' line " // itoa(nline + 1) // ': read error: ' &
-                  // trim(iomsg)
-      end if
       if (len(msg) == 0 .and. npt < 2) then
          msg = "curve file '" // path // "': need at least 2 points, found " // itoa(npt)
       end if
-      close (unit)
       errmsg = msg
       if (len(msg) > 0) then
          call fail()

@@ -2,8 +2,10 @@
 !> interoperability and without a shell: creating the output directory
 !> (a path is taken literally, never handed to a shell), the result files
 !> written by the system calls creat/write/pwrite/close/unlink, the text
-!> of errno, and the SIGTERM/SIGINT handler that asks the run to stop at
-!> the next converged increment.
+!> of errno, the input files read whole by fopen/fread (a pipe reads like
+!> a file: nothing seeks), the lock (flock) by which a run owns its output
+!> directory, and the SIGTERM/SIGINT handler that asks the
+!> run to stop at the next converged increment.
 !>
 !> Why result files do not use Fortran I/O: gfortran 12 reports success
 !> (iostat = 0) from a FLUSH or CLOSE whose write failed (ENOSPC on a full
@@ -17,11 +19,13 @@
 module os
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_ptr, c_funptr, &
       c_funloc, c_associated, c_f_pointer, c_size_t, c_long
-   use text, only: itoa
+   use kinds, only: dp
+   use text, only: itoa, next_line
    implicit none
    private
    public :: make_directory, install_stop_handlers, stop_requested, signal_name
    public :: file_create, file_write, file_write_at, file_close, file_remove
+   public :: read_file, file_too_large, lock_file, lock_busy, memory_room
 
    !> POSIX signal numbers (the same on every Linux architecture)
    integer(c_int), parameter :: sigint = 2, sigterm = 15, sigxfsz = 25
@@ -33,6 +37,16 @@ module os
 
    !> errno of an interrupted system call (retried)
    integer(c_int), parameter :: eintr = 4
+   !> errno of a read from a directory, of an input/output error
+   integer(c_int), parameter :: eisdir = 21, eio = 5
+   !> read_file's stat for a file longer than its limit (not an errno)
+   integer, parameter :: file_too_large = -1
+   !> lock_file's stat for a lock another process holds (not an errno)
+   integer, parameter :: lock_busy = -2
+   !> errno of a lock held elsewhere (EWOULDBLOCK = EAGAIN on Linux)
+   integer(c_int), parameter :: ewouldblock = 11
+   !> flock(2) operation: exclusive, do not wait
+   integer(c_int), parameter :: lock_ex = 2, lock_nb = 4
 
    interface
       function c_creat(path, mode) bind(C, name='creat') result(fd)
@@ -86,6 +100,66 @@ module os
          type(c_ptr), value :: s
          integer(c_size_t) :: n
       end function c_strlen
+      function c_fopen(path, mode) bind(C, name='fopen') result(fp)
+         import :: c_char, c_ptr
+         character(kind=c_char), intent(in) :: path(*), mode(*)
+         type(c_ptr) :: fp
+      end function c_fopen
+      function c_fread(buf, size, count, fp) bind(C, name='fread') result(n)
+         import :: c_char, c_size_t, c_ptr
+         character(kind=c_char), intent(out) :: buf(*)
+         integer(c_size_t), value :: size, count
+         type(c_ptr), value :: fp
+         integer(c_size_t) :: n
+      end function c_fread
+      function c_ferror(fp) bind(C, name='ferror') result(rc)
+         import :: c_int, c_ptr
+         type(c_ptr), value :: fp
+         integer(c_int) :: rc
+      end function c_ferror
+      function c_fclose(fp) bind(C, name='fclose') result(rc)
+         import :: c_int, c_ptr
+         type(c_ptr), value :: fp
+         integer(c_int) :: rc
+      end function c_fclose
+      function c_fileno(fp) bind(C, name='fileno') result(fd)
+         import :: c_int, c_ptr
+         type(c_ptr), value :: fp
+         integer(c_int) :: fd
+      end function c_fileno
+      function c_flock(fd, operation) bind(C, name='flock') result(rc)
+         import :: c_int
+         integer(c_int), value :: fd, operation
+         integer(c_int) :: rc
+      end function c_flock
+      function c_ftruncate(fd, length) bind(C, name='ftruncate') result(rc)
+         import :: c_int, c_long
+         integer(c_int), value :: fd
+         integer(c_long), value :: length
+         integer(c_int) :: rc
+      end function c_ftruncate
+      function c_pread(fd, buf, count, offset) bind(C, name='pread') result(n)
+         import :: c_int, c_char, c_size_t, c_long
+         integer(c_int), value :: fd
+         character(kind=c_char), intent(out) :: buf(*)
+         integer(c_size_t), value :: count
+         integer(c_long), value :: offset
+         integer(c_long) :: n
+      end function c_pread
+      function c_getrlimit(resource, limits) bind(C, name='getrlimit') result(rc)
+         import :: c_int, c_long
+         integer(c_int), value :: resource
+         integer(c_long), intent(out) :: limits(2)
+         integer(c_int) :: rc
+      end function c_getrlimit
+      function c_getpagesize() bind(C, name='getpagesize') result(n)
+         import :: c_int
+         integer(c_int) :: n
+      end function c_getpagesize
+      function c_getpid() bind(C, name='getpid') result(pid)
+         import :: c_int
+         integer(c_int) :: pid
+      end function c_getpid
       function c_signal(signum, handler) bind(C, name='signal') result(old)
          import :: c_int, c_funptr
          integer(c_int), value :: signum
@@ -246,6 +320,185 @@ contains
          end if
       end if
    end subroutine file_remove
+
+   !> READ_FILE: the whole of an input file as one string, read from its
+   !> start to its end (fopen/fread) and never positioned: a pipe,
+   !> /dev/stdin or a process substitution (bash's <(...)) reads like a
+   !> regular file, where a Fortran rewind or inquire(size=) fails with
+   !> "Illegal seek".  At most max_bytes are taken: a longer file (or an
+   !> endless one, /dev/zero) is refused after max_bytes + 1 bytes, so that
+   !> no input can hang the program or exhaust its memory.
+   !>  path       [in]  the file
+   !>  max_bytes  [in]  the largest file accepted, bytes (>= 0)
+   !>  text       [out] the file's bytes; length 0 when stat /= 0
+   !>  stat       [out] 0, an errno, or file_too_large
+   !>  msg        [out] the reason when stat /= 0: the system's words,
+   !>                   'is a directory, not a file', or 'larger than N
+   !>                   bytes, ...'; '' otherwise
+   subroutine read_file(path, max_bytes, text, stat, msg)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: max_bytes
+      character(len=:), allocatable, intent(out) :: text
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: msg
+      integer, parameter :: chunk_len = 65536
+      character(kind=c_char, len=chunk_len) :: chunk
+      character(len=:), allocatable :: buf, grown
+      type(c_ptr) :: fp
+      integer :: total, n
+      text = ''
+      msg = ''
+      stat = 0
+      fp = c_fopen(trim(path)//c_null_char, 'r'//c_null_char)
+      if (.not. c_associated(fp)) then
+         stat = errno()
+         msg = errno_text(stat)
+         return
+      end if
+      allocate (character(len=chunk_len) :: buf)
+      total = 0
+      do
+         n = int(c_fread(chunk, 1_c_size_t, int(chunk_len, c_size_t), fp))
+         if (n > 0) then
+            ! keep one byte past the limit at most: enough to refuse the file
+            n = min(n, max_bytes + 1 - total)
+            if (total + n > len(buf)) then
+               allocate (character(len=max(2*len(buf), total + n)) :: grown)
+               grown(1:total) = buf(1:total)
+               call move_alloc(grown, buf)
+            end if
+            buf(total + 1:total + n) = chunk(1:n)
+            total = total + n
+         end if
+         if (total > max_bytes) then
+            stat = file_too_large
+            msg = 'larger than '//itoa(max_bytes)//' bytes, the most an input file may have'
+            exit
+         end if
+         if (n < chunk_len) then
+            ! a short read: the end of the file, or an error (ferror says)
+            if (c_ferror(fp) /= 0) then
+               stat = errno()
+               if (stat == 0) stat = eio
+               msg = errno_text(stat)
+               if (stat == eisdir) msg = 'is a directory, not a file'
+            end if
+            exit
+         end if
+      end do
+      if (c_fclose(fp) /= 0 .and. stat == 0) then
+         stat = errno()
+         msg = errno_text(stat)
+      end if
+      if (stat == 0) text = buf(1:total)
+   end subroutine read_file
+
+   !> LOCK_FILE: take the exclusive lock (flock, without waiting) of a
+   !> file, created if missing, for the rest of the process, and write the
+   !> process id in it.  The file stays open until the process ends, and
+   !> the system releases the lock then, however the process ends (SIGKILL
+   !> included): a lock file left by a killed run is not held by anyone
+   !> and never blocks the next run, with no process id to check.
+   !>  path   [in]  the lock file
+   !>  stat   [out] 0 (the lock is this process's), lock_busy (another
+   !>               process holds it), or an errno
+   !>  msg    [out] with lock_busy: the holder's process id as written in
+   !>               the file ('' if it has not written it yet); with an
+   !>               errno: the system's reason; else ''
+   subroutine lock_file(path, stat, msg)
+      character(len=*), intent(in) :: path
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: msg
+      character(kind=c_char, len=24) :: buf
+      type(c_ptr) :: fp
+      integer(c_int) :: fd, rc
+      integer(c_long) :: n
+      character(len=:), allocatable :: why
+      msg = ''
+      stat = 0
+      ! "a+": created if missing, never truncated (the holder's id stays),
+      ! readable (the holder's id is read from it)
+      fp = c_fopen(trim(path)//c_null_char, 'a+'//c_null_char)
+      if (.not. c_associated(fp)) then
+         stat = errno()
+         msg = errno_text(stat)
+         return
+      end if
+      fd = c_fileno(fp)
+      if (c_flock(fd, ior(lock_ex, lock_nb)) /= 0) then
+         stat = errno()
+         if (stat == ewouldblock) then
+            stat = lock_busy
+            buf = ''
+            n = c_pread(fd, buf, int(len(buf), c_size_t), 0_c_long)
+            if (n > 0) msg = buf(1:min(int(n), len(buf)))
+            if (index(msg, achar(10)) > 0) msg = msg(1:index(msg, achar(10)) - 1)
+            if (verify(msg, '0123456789') /= 0) msg = ''
+         else
+            msg = errno_text(stat)
+         end if
+         rc = c_fclose(fp)
+         return
+      end if
+      ! the lock is ours: the file says who holds it (fp stays open)
+      if (c_ftruncate(fd, 0_c_long) /= 0) then
+         stat = errno()
+         msg = errno_text(stat)
+         return
+      end if
+      call write_all(int(fd), itoa(int(c_getpid()))//achar(10), -1, stat, why)
+      if (stat /= 0) msg = why
+   end subroutine lock_file
+
+   !> MEMORY_ROOM: how much more memory this process can have, bytes: the
+   !> address-space limit (getrlimit RLIMIT_AS, `ulimit -v`) less what the
+   !> process maps already (/proc/self/statm), and the machine's memory
+   !> and swap (/proc/meminfo MemTotal + SwapTotal); the smaller of the two
+   !> and which it is.  Either is left out when unknown or unlimited.
+   !>  room  [out] bytes; huge() when neither is known
+   !>  what  [out] 'the address-space limit (ulimit -v)', 'the machine's
+   !>              memory and swap', or '' when room = huge()
+   subroutine memory_room(room, what)
+      real(dp), intent(out) :: room
+      character(len=:), allocatable, intent(out) :: what
+      !> RLIMIT_AS on Linux
+      integer(c_int), parameter :: rlimit_as = 9
+      integer(c_long) :: limits(2)
+      character(len=:), allocatable :: text, why, line
+      real(dp) :: mapped, total, kb
+      integer :: stat, pos, k, ios
+      room = huge(1.0_dp)
+      what = ''
+      ! the address-space limit (RLIM_INFINITY reads as -1)
+      if (c_getrlimit(rlimit_as, limits) == 0 .and. limits(1) > 0) then
+         call read_file('/proc/self/statm', 4096, text, stat, why)
+         mapped = 0.0_dp
+         if (stat == 0) then
+            read (text, *, iostat=ios) mapped
+            if (ios /= 0) mapped = 0.0_dp
+            mapped = mapped*real(c_getpagesize(), dp)
+         end if
+         room = real(limits(1), dp) - mapped
+         what = 'the address-space limit (ulimit -v)'
+      end if
+      ! the machine
+      call read_file('/proc/meminfo', 65536, text, stat, why)
+      if (stat /= 0) return
+      total = 0.0_dp
+      pos = 1
+      do while (pos <= len(text))
+         call next_line(text, pos, line)
+         k = index(line, ':')
+         if (k == 0) cycle
+         if (line(1:k) /= 'MemTotal:' .and. line(1:k) /= 'SwapTotal:') cycle
+         read (line(k + 1:), *, iostat=ios) kb
+         if (ios == 0) total = total + 1024.0_dp*kb
+      end do
+      if (total > 0.0_dp .and. total < room) then
+         room = total
+         what = 'the machine''s memory and swap'
+      end if
+   end subroutine memory_room
 
    !> MAKE_ONE: mkdir of one path, mode 0777 (less the umask).
    !>  path  [in]  the directory

@@ -21,12 +21,13 @@ module output
    use section, only: ih_strain, ih_eps22, ih_eqps, ih_stress22
    use model, only: model_type, state_type, gauss_position
    use tools, only: tool_sample
-   use os, only: make_directory, file_create, file_write, file_write_at, file_close, file_remove
+   use os, only: make_directory, file_create, file_write, file_write_at, file_close, file_remove, &
+                 lock_file, lock_busy
    implicit none
    private
    public :: output_files, open_outputs, write_row, write_strains, close_outputs, fmt_row, &
              write_tools, open_snapshots, write_snapshot, write_progress, result_files, &
-             write_text_file, remove_results
+             write_text_file, remove_results, claim_output_dir, owner_lock
 
    character(len=*), parameter :: fmt_row = '(*(1x,es24.16e3))'
    character(len=1), parameter :: nl = achar(10)
@@ -36,6 +37,11 @@ module output
    character(len=*), parameter :: result_files(9) = [character(len=23) :: &
       'summary.txt', 'lock.dat', 'pull.dat', 'strain_lock.dat', 'strain_pull.dat', &
       'strain_localization.dat', 'tools_lock.dat', 'tools_pull.dat', 'snapshots.dat']
+
+   !> The file by which a run owns its output directory (module os's
+   !> lock_file: held while the run goes, released by the system when it
+   !> ends, however it ends).
+   character(len=*), parameter :: owner_lock = '.drawbead.lock'
 
    !> One file of the run held open: its descriptor (-1: not open) and name.
    type :: open_file
@@ -102,6 +108,37 @@ contains
                ' lift = vertical force of the sheet opening the binder (on the upper tool)'//nl)
       if (out%failed) errmsg = out%failure
    end subroutine open_outputs
+
+   !> CLAIM_OUTPUT_DIR: the output directory becomes this run's: created
+   !> (with its parents) if needed, and its lock file (owner_lock) taken
+   !> for the rest of the process.  A second run into a directory a run is
+   !> writing is refused, naming the directory and the other run's process
+   !> id (two runs into one directory mixed their files: issue 28, item 2).
+   !> A lock file left by a run that was killed is free: it does not block.
+   !>  dir     [in]  the output directory
+   !>  errmsg  [out] '' or why the directory cannot be this run's
+   subroutine claim_output_dir(dir, errmsg)
+      character(len=*), intent(in) :: dir
+      character(len=*), intent(out) :: errmsg
+      character(len=:), allocatable :: why, other
+      integer :: stat
+      errmsg = ''
+      call make_directory(trim(dir), stat, why)
+      if (stat /= 0) then
+         errmsg = 'cannot create output directory '//trim(dir)//': '//why
+         return
+      end if
+      call lock_file(trim(dir)//'/'//owner_lock, stat, why)
+      if (stat == lock_busy) then
+         other = 'another run of drawbead'
+         if (len(why) > 0) other = other//' (process id '//why//')'
+         errmsg = 'output directory '//trim(dir)//' is in use by '//other//', which holds '// &
+                  trim(dir)//'/'//owner_lock//': wait for it to end, or give another directory (-o DIR)'
+      else if (stat /= 0) then
+         errmsg = 'cannot lock output directory '//trim(dir)//' ('//trim(dir)//'/'//owner_lock// &
+                  '): '//why
+      end if
+   end subroutine claim_output_dir
 
    !> REMOVE_RESULTS: remove the result files (result_files) of an earlier
    !> run from a directory, if it has any; a directory that does not exist

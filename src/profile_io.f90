@@ -17,13 +17,17 @@
 !> overall.  The radius is |start - centre|; |end - centre| must agree
 !> within 1e-6 relative.  Each piece must start within 1e-6 mm of the
 !> previous piece's end (it is then snapped onto it).  The chain is then
-!> validated as tool_init does.  Errors are reported as
+!> validated as tool_init does and checked not to cross itself
+!> (find_crossing).  The file is read whole, at most text's
+!> max_input_bytes, lines at most max_line_length characters.  Errors are reported as
 !> '<path>:<line>: <what>' ('<path>: <what>' for the whole file).
 module profile_io
    use kinds, only: dp
-   use text, only: read_line, strip_comment, split_fields, parse_real, lower, itoa, num
+   use text, only: next_line, strip_comment, split_fields, parse_real, lower, itoa, num, &
+                   max_input_bytes, max_line_length
+   use os, only: read_file
    use tools, only: seg_line, segment_type, tool_type, line_segment, arc_segment, tool_init, &
-                    check_chain, radius_tol
+                    check_chain, radius_tol, cross2, in_arc
    implicit none
    private
    public :: read_profile, write_profile
@@ -52,21 +56,22 @@ contains
       type(tool_type), intent(out) :: tool
       character(len=*), intent(out) :: errmsg
       integer, intent(out), optional :: stat
-      character(len=:), allocatable :: line
-      character(len=256) :: iomsg
+      character(len=:), allocatable :: contents, why, line
       type(segment_type), allocatable :: segs(:), tmp(:)
       integer, allocatable :: lineof(:), itmp(:)
       integer :: first(max_fields), last(max_fields)
-      integer :: unit, ios, lineno, ntok, nseg, side, nneed, k, ibad
-      real(dp) :: v(6), gap
+      integer :: ios, pos, lineno, ntok, nseg, side, nneed, k, ibad
+      real(dp) :: v(6), gap, cross_at(2)
       character(len=16) :: key
       character(len=400) :: what
 
       errmsg = ''
       if (present(stat)) stat = 1
-      open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+      ! read whole, bounded: /dev/zero or a huge file is refused, not read
+      ! forever; a directory is named as such
+      call read_file(path, max_input_bytes, contents, ios, why)
       if (ios /= 0) then
-         errmsg = trim(path)//': cannot open: '//trim(iomsg)
+         errmsg = trim(path)//': cannot read: '//why
          return
       end if
       allocate (segs(16), lineof(16))
@@ -74,10 +79,14 @@ contains
       side = 0
       lineno = 0
       what = ''
-      do
-         call read_line(unit, line, ios, iomsg)
-         if (ios /= 0) exit
+      pos = 1
+      do while (pos <= len(contents))
+         call next_line(contents, pos, line)
          lineno = lineno + 1
+         if (len(line) > max_line_length) then
+            what = 'longer than '//itoa(max_line_length)//' characters'
+            exit
+         end if
          line = strip_comment(line, '#')
          call split_fields(line, first, last, ntok)
          if (ntok == 0) cycle
@@ -165,13 +174,8 @@ contains
          end if
          if (len_trim(what) > 0) exit
       end do
-      close (unit)
       if (len_trim(what) > 0) then
          errmsg = trim(path)//':'//itoa(lineno)//': '//trim(what)
-         return
-      end if
-      if (ios > 0) then
-         errmsg = trim(path)//':'//itoa(lineno + 1)//': read error: '//trim(iomsg)
          return
       end if
       if (side == 0) then
@@ -188,6 +192,16 @@ contains
          errmsg = trim(path)//':'//itoa(lineof(min(ibad, nseg)))//': '//trim(what)
          return
       end if
+      ! (the first of the two pieces may be 0, the continuation before the
+      ! chain: the second, k, says whether they meet)
+      call find_crossing(segs(1:nseg), ibad, k, cross_at)
+      if (k /= 0) then
+         errmsg = trim(path)//':'//itoa(lineof(min(k, nseg)))//': '// &
+                  piece_name(k)//' crosses '//piece_name(ibad)// &
+                  ' at (x, y) = ('//num(cross_at(1))//', '//num(cross_at(2))// &
+                  ') mm: the profile must not cross itself'
+         return
+      end if
       call tool_init(tool, segs(1:nseg), side, what, ibad)
       if (ibad /= 0) then
          errmsg = trim(path)//': '//trim(what)
@@ -195,6 +209,22 @@ contains
       end if
       if (present(stat)) stat = 0
    contains
+      !> PIECE_NAME: a piece of the chain for a message: 'the piece on line
+      !> N', or the chain's straight continuation before its first piece
+      !> (k = 0) or after its last (k = nseg + 1).
+      !>  k [in]  piece number, 0 to nseg + 1
+      function piece_name(k) result(name)
+         integer, intent(in) :: k
+         character(len=:), allocatable :: name
+         if (k == 0) then
+            name = 'the continuation before the first piece (line '//itoa(lineof(1))//')'
+         else if (k == nseg + 1) then
+            name = 'the continuation after the last piece (line '//itoa(lineof(nseg))//')'
+         else
+            name = 'the piece on line '//itoa(lineof(k))
+         end if
+      end function piece_name
+
       !> FIELD: field k (1 <= k <= ntok <= max_fields) of the current line.
       !>  k [in]  field number
       function field(k) result(f)
@@ -203,6 +233,169 @@ contains
          f = line(first(k):last(k))
       end function field
    end subroutine read_profile
+
+   !> FIND_CROSSING: where a chain crosses or touches itself.  Every pair of
+   !> pieces is intersected exactly (line-line, line-arc, arc-arc), the
+   !> chain's straight continuations beyond its ends (tool_level's tangent
+   !> lines, taken far_length long) included as pieces 0 and n + 1;
+   !> consecutive pieces share their joint, which does not count (a point
+   !> within near_joint times the chain's size of it).  A surface that
+   !> crosses itself has no inside: the contact search would then find the
+   !> sheet inside one part of the tool and outside another, and blame the
+   !> other tool (issue 28, item 7).
+   !>  segs      [in]  the chain (validated by check_chain)
+   !>  i, j      [out] 0, 0 if the chain does not cross itself; else the
+   !>                  two pieces that meet (0 <= i < j <= n + 1)
+   !>  at        [out] where they meet, mm
+   subroutine find_crossing(segs, i, j, at)
+      type(segment_type), intent(in) :: segs(:)
+      integer, intent(out) :: i, j
+      real(dp), intent(out) :: at(2)
+      !> the continuations' length, mm (coordinates are at most 1e6 mm)
+      real(dp), parameter :: far_length = 1.0e7_dp
+      !> how near the joint of consecutive pieces a meeting point belongs
+      !> to the joint, relative to the chain's size (double roots of tangent
+      !> pieces are found to about 1e-8 relative)
+      real(dp), parameter :: near_joint = 1.0e-6_dp
+      type(segment_type) :: pieces(0:size(segs) + 1)
+      real(dp) :: pts(2, 2), extent, tol, joint(2)
+      integer :: n, np, k
+      n = size(segs)
+      at = 0.0_dp
+      pieces(1:n) = segs
+      pieces(0) = line_segment(segs(1)%p1 - far_length*segs(1)%t1, segs(1)%p1)
+      pieces(n + 1) = line_segment(segs(n)%p2, segs(n)%p2 + far_length*segs(n)%t2)
+      extent = max(maxval(segs%box(2)) - minval(segs%box(1)), maxval(segs%box(4)) - minval(segs%box(3)))
+      tol = 1.0e-9_dp*extent
+      do i = 0, n + 1
+         do j = i + 1, n + 1
+            if (any(pieces(i)%box([1, 3]) > pieces(j)%box([2, 4]) + tol) .or. &
+                any(pieces(j)%box([1, 3]) > pieces(i)%box([2, 4]) + tol)) cycle
+            call meet(pieces(i), pieces(j), tol, pts, np)
+            joint = pieces(i)%p2
+            do k = 1, np
+               if (j == i + 1 .and. norm2(pts(:, k) - joint) <= near_joint*extent) cycle
+               at = pts(:, k)
+               return
+            end do
+         end do
+      end do
+      i = 0
+      j = 0
+   end subroutine find_crossing
+
+   !> MEET: the points where two pieces meet (at most two are reported;
+   !> for overlapping collinear lines or arcs of one circle, the ends of
+   !> the overlap).
+   !>  a, b  [in]  the pieces
+   !>  tol   [in]  distance within which points meet, mm
+   !>  pts   [out] pts(:, 1:np) the points
+   !>  np    [out] how many (0, 1 or 2)
+   subroutine meet(a, b, tol, pts, np)
+      type(segment_type), intent(in) :: a, b
+      real(dp), intent(in) :: tol
+      real(dp), intent(out) :: pts(2, 2)
+      integer, intent(out) :: np
+      real(dp) :: cand(2, 4), d, along, half_chord, ex(2)
+      integer :: nc, k
+      np = 0
+      pts = 0.0_dp
+      nc = 0
+      if (a%kind == seg_line .and. b%kind == seg_line) then
+         call line_line(a, b)
+      else if (a%kind == seg_line) then
+         call line_circle(a, b)
+      else if (b%kind == seg_line) then
+         call line_circle(b, a)
+      else
+         d = norm2(b%centre - a%centre)
+         if (d <= tol .and. abs(a%radius - b%radius) <= tol) then
+            ! one circle: the ends of either arc inside the other
+            call add(a%p1)
+            call add(a%p2)
+            call add(b%p1)
+            call add(b%p2)
+         else if (d > tol .and. d <= a%radius + b%radius + tol .and. &
+                  d >= abs(a%radius - b%radius) - tol) then
+            ex = (b%centre - a%centre)/d
+            along = (a%radius**2 - b%radius**2 + d**2)/(2.0_dp*d)
+            half_chord = sqrt(max(a%radius**2 - along**2, 0.0_dp))
+            call add(a%centre + along*ex + half_chord*[-ex(2), ex(1)])
+            call add(a%centre + along*ex - half_chord*[-ex(2), ex(1)])
+         end if
+      end if
+      ! keep the candidates on both pieces
+      do k = 1, nc
+         if (np == 2) exit
+         if (on_piece(a, cand(:, k)) .and. on_piece(b, cand(:, k))) then
+            np = np + 1
+            pts(:, np) = cand(:, k)
+         end if
+      end do
+   contains
+      !> ADD: one candidate point.
+      subroutine add(p)
+         real(dp), intent(in) :: p(2)
+         nc = nc + 1
+         cand(:, nc) = p
+      end subroutine add
+
+      !> LINE_LINE: the crossing of two lines, or the ends of their overlap.
+      subroutine line_line(l1, l2)
+         type(segment_type), intent(in) :: l1, l2
+         real(dp) :: r(2), q(2), den, t
+         r = l1%p2 - l1%p1
+         q = l2%p2 - l2%p1
+         den = cross2(r, q)
+         if (abs(den) > 1.0e-12_dp*norm2(r)*norm2(q)) then
+            t = cross2(l2%p1 - l1%p1, q)/den
+            call add(l1%p1 + t*r)
+         else if (abs(cross2(r, l2%p1 - l1%p1)) <= tol*norm2(r)) then
+            ! collinear: the ends of each inside the other
+            call add(l1%p1)
+            call add(l1%p2)
+            call add(l2%p1)
+            call add(l2%p2)
+         end if
+      end subroutine line_line
+
+      !> LINE_CIRCLE: where a line meets the circle of an arc.
+      subroutine line_circle(l, c)
+         type(segment_type), intent(in) :: l, c
+         real(dp) :: r(2), f(2), qa, qb, qc, disc, t
+         integer :: sgn
+         r = l%p2 - l%p1
+         f = l%p1 - c%centre
+         qa = dot_product(r, r)
+         qb = 2.0_dp*dot_product(r, f)
+         qc = dot_product(f, f) - c%radius**2
+         disc = qb**2 - 4.0_dp*qa*qc
+         ! a line within tol of tangent touches
+         if (disc < -4.0_dp*qa*(2.0_dp*c%radius*tol)) return
+         do sgn = -1, 1, 2
+            t = (-qb + real(sgn, dp)*sqrt(max(disc, 0.0_dp)))/(2.0_dp*qa)
+            call add(l%p1 + t*r)
+         end do
+      end subroutine line_circle
+
+      !> ON_PIECE: a point (on the piece's line or circle) within the piece.
+      pure logical function on_piece(sg, p)
+         type(segment_type), intent(in) :: sg
+         real(dp), intent(in) :: p(2)
+         real(dp) :: r(2), t
+         if (norm2(p - sg%p1) <= tol .or. norm2(p - sg%p2) <= tol) then
+            on_piece = .true.
+         else if (sg%kind == seg_line) then
+            r = sg%p2 - sg%p1
+            t = dot_product(p - sg%p1, r)/dot_product(r, r)
+            on_piece = t >= 0.0_dp .and. t <= 1.0_dp .and. &
+                       abs(cross2(r, p - sg%p1)) <= tol*norm2(r)
+         else
+            on_piece = abs(norm2(p - sg%centre) - sg%radius) <= tol .and. &
+                       in_arc(sg, (p - sg%centre)/sg%radius)
+         end if
+      end function on_piece
+   end subroutine meet
 
    !> WRITE_PROFILE: write a tool as a profile file (the tool at rest),
    !> numbers with 17 significant digits so read_profile gives back the same

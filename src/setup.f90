@@ -9,18 +9,24 @@
 module setup
    use kinds, only: dp
    use errors, only: error_list, add_error
-   use text, only: lower, file_exists, num
+   use text, only: lower, file_exists, num, itoa
    use deck, only: deck_type, umat_props_given
    use controls, only: controls_type
    use model, only: model_type, model_init
    use hardening, only: read_curve_file, law_swift, law_voce, law_table, ip_law, ip_table_m
    use material_j2, only: ip_youngs, ip_poisson, ip_r_value, check_props
    use material, only: material_type, builtin_material, user_material, user_umat_linked
-   use tools, only: tool_type, tool_sample
+   use tools, only: tool_type, tool_sample, seg_arc
    use tool_distance, only: tool_gap
    use bead_builder, only: build_rectangular_bead
    use profile_io, only: read_profile
-   use remesh, only: exit_element_over_h
+   use remesh, only: exit_element_over_h, exit_zone_before, exit_zone_after
+   use os, only: memory_room
+   use section, only: n_hist
+   use contact, only: n_chist
+   use element, only: n_gp
+   use hermite, only: n_gauss
+   use mesh, only: dofs_per_node, half_band
    implicit none
    private
    public :: setup_run, material_constants, material_of_deck
@@ -47,6 +53,7 @@ contains
       type(tool_type) :: upper, lower_tool
       logical :: deck_ok
       real(dp) :: h
+      integer :: n_split
 
       deck_ok = errs%count == 0
       call material_of_deck(d, deck_ok, mat, errs)
@@ -69,6 +76,7 @@ contains
       if (m%has_tools) then
          m%tool(1) = upper
          m%tool(2) = lower_tool
+         call check_element_length(d, m%x, upper, lower_tool, errs)
       end if
       ! contact (2.18)-(2.23): the penalty is given as k h / E, the lengths
       ! in units of h
@@ -84,13 +92,19 @@ contains
       m%back_tension = d%back_tension
       m%lock_depth = d%lock_depth
       m%pull_distance = d%pull_distance
-      ! the neck resolved on the default path (docs/theory.md §7.6): a clamped
-      ! pull with the contact section and the load-maximum criterion, on a
-      ! mesh without a zone of its own
+      ! the neck resolved on the default path (docs/theory.md §7.6): a pull
+      ! with the contact section and the load-maximum criterion, on a mesh
+      ! without a zone of its own
       if (d%refine_exit .and. m%has_tools .and. m%contact_section &
           .and. d%tearing_criterion == 'load_maximum' .and. d%pull_distance > 0.0_dp &
           .and. d%lock_depth > 0.0_dp .and. .not. d%refine_neck .and. .not. (d%refine_element > 0.0_dp)) &
          m%exit_element = exit_element_over_h*h
+      ! the memory of the largest mesh the run can have: with refine_exit
+      ! the elements split over the window and the material drawn through it
+      n_split = 0
+      if (m%exit_element > 0.0_dp) n_split = ceiling(min(d%length, (exit_zone_before + exit_zone_after)*h + &
+                                                         d%pull_distance)/m%exit_element)
+      call check_memory(d, m%n_el + n_split, d%thickness_points, errs)
    end subroutine setup_run
 
    !> MATERIAL_OF_DECK: the material: the built-in J2/Hill law with its
@@ -198,7 +212,7 @@ contains
       type(tool_type), intent(out) :: upper, lower
       type(error_list), intent(inout) :: errs
 
-      character(len=300) :: errmsg
+      character(len=1024) :: errmsg
       character(len=:), allocatable :: ctx
       real(dp) :: margin
 
@@ -216,16 +230,16 @@ contains
       case ('profile')
          if (readable(d%upper_profile)) then
             call read_profile(trim(d%upper_profile), upper, errmsg)
-            if (len_trim(errmsg) == 0 .and. upper%side /= 1) errmsg = 'variable upper_profile: '// &
+            if (len_trim(errmsg) == 0 .and. upper%side /= 1) errmsg = &
                trim(d%upper_profile)//' is a lower tool (side lower)'
-            if (len_trim(errmsg) > 0) call add_error(errs, ctx//trim(errmsg))
+            if (len_trim(errmsg) > 0) call add_error(errs, ctx//'variable upper_profile: '//trim(errmsg))
          end if
          errmsg = ''
          if (readable(d%lower_profile)) then
             call read_profile(trim(d%lower_profile), lower, errmsg)
-            if (len_trim(errmsg) == 0 .and. lower%side /= -1) errmsg = 'variable lower_profile: '// &
+            if (len_trim(errmsg) == 0 .and. lower%side /= -1) errmsg = &
                trim(d%lower_profile)//' is an upper tool (side upper)'
-            if (len_trim(errmsg) > 0) call add_error(errs, ctx//trim(errmsg))
+            if (len_trim(errmsg) > 0) call add_error(errs, ctx//'variable lower_profile: '//trim(errmsg))
          end if
       end select
    end subroutine tools_of_deck
@@ -283,6 +297,134 @@ contains
                      ' mm = '//num(worst/h)//' h near (x, y) = ('//num(at(1))//', '//num(at(2))// &
                      ') mm, where the physical gap must be at least the sheet thickness')
    end subroutine check_clearance
+
+   !> CHECK_ELEMENT_LENGTH: a mesh whose elements are longer than the
+   !> smallest radius of the tools is refused.  An element is one cubic in
+   !> each displacement: bent over a radius shorter than itself it cannot
+   !> follow the tool, its nodes cut the corner, and the run still ends
+   !> with a confident answer (issue 28: 2 elements of 25 h on bead A's
+   !> radii of 4.66 h gave status = localized at delta_cr = 1.43 h against
+   !> 2.09 h on 80 elements, with only a penetration warning).  The limit
+   !> is the element's length itself (not a fraction of it): the
+   !> refine_neck regression deck runs its first pass on elements of 3 h
+   !> over radii of 4.66 h, and its neck is where the fine mesh finds it.
+   !> The longest element of the whole mesh counts (with mesh_beta > 1
+   !> those are at the sheet's ends, which the pull brings toward the
+   !> bead).  Tools without arcs (sharp corners only) have no radius to
+   !> compare.
+   !>  d             [in]     the deck (for the message)
+   !>  x             [in]     the mesh's node positions, ascending, mm
+   !>  upper, lower  [in]     the tools at rest
+   !>  errs          [in,out] one error when an element is too long
+   subroutine check_element_length(d, x, upper, lower, errs)
+      type(deck_type), intent(in) :: d
+      real(dp), intent(in) :: x(:)
+      type(tool_type), intent(in) :: upper, lower
+      type(error_list), intent(inout) :: errs
+      real(dp) :: longest, radius, h
+      character(len=:), allocatable :: which
+      integer :: n_need
+      if (size(x) < 2) return
+      h = d%thickness
+      longest = maxval(x(2:) - x(:size(x) - 1))
+      if (d%bead == 'rectangular') then
+         radius = min(d%r1, d%r2)
+         which = merge('r1', 'r2', d%r1 <= d%r2)
+      else
+         radius = min(smallest_radius(upper), smallest_radius(lower))
+         if (radius >= huge(1.0_dp)) return
+         which = 'the smallest arc of profile '''//trim(merge(d%upper_profile, d%lower_profile, &
+                 smallest_radius(upper) <= smallest_radius(lower)))//''''
+      end if
+      ! 1e-9 relative: an element exactly as long as the radius is allowed
+      if (longest <= radius*(1.0_dp + 1.0e-9_dp)) return
+      ! graded_nodes' longest element, L (1 - (1 - 2/n)^beta), is at most
+      ! 2 L beta / n: this many elements are enough
+      n_need = ceiling(d%mesh_beta*d%length/radius)
+      call add_error(errs, "deck '"//trim(d%deck_file)//"', group &sheet, variable n_elements: "// &
+                     'elements of up to '//num(longest/h)//' h ('//num(longest)//' mm) are longer '// &
+                     'than the smallest tool radius, '//num(radius/h)//' h ('//num(radius)//' mm, '// &
+                     which//'): the sheet cannot follow the tools; give n_elements >= '// &
+                     itoa(n_need)//' for elements no longer than the radius')
+   end subroutine check_element_length
+
+   !> RUN_MEMORY: an estimate of the memory a run takes, bytes: the arrays
+   !> that grow with the mesh (model's state_init: the material history
+   !> hn, h1 and the contact history cn, c1, the station results, the
+   !> displacements; solver's per-element work arrays of an assembly; the
+   !> band matrix, LDA 3 half_band + 1; the increment loop's vectors; the
+   !> text of a strain file, 1504 bytes per element), plus 8 MiB for the
+   !> program's fixed part (tools, records, I/O buffers).  On 20000
+   !> elements (21 stations) it says 473 MiB beyond what the program maps
+   !> at set-up; the run went through under ulimit -v 490000 (462 MiB
+   !> beyond) and failed in an allocation under 470000 (453 MiB).
+   !>  n_el  [in] elements of the run's mesh
+   !>  npt   [in] Simpson stations through the thickness
+   pure function run_memory(n_el, npt) result(bytes)
+      integer, intent(in) :: n_el, npt
+      real(dp) :: bytes, per_element, per_dof, n_dof
+      n_dof = real(dofs_per_node, dp)*real(n_el + 1, dp)
+      ! real64 words per element: state, then one assembly's work arrays
+      per_element = real(n_gauss, dp)*(2.0_dp*real(npt*n_hist, dp) + 4.0_dp*real(n_chist, dp) + &
+                                       2.0_dp*real(n_gp, dp) + 2.0_dp) &
+                    + 8.0_dp + 64.0_dp + 3.0_dp + 4.0_dp*real(n_gauss, dp) &
+                    + real(n_gauss*npt, dp) &         ! the plastic flags (two logical arrays)
+                    + 188.0_dp                         ! the text of a strain file's rows
+      ! per dof: u, u1, the band matrix, the increment loop's and loads' vectors
+      per_dof = 2.0_dp + real(3*half_band + 1, dp) + 0.5_dp + 6.0_dp
+      bytes = 8.0_dp*(per_element*real(n_el, dp) + per_dof*n_dof) + 8.0_dp*1024.0_dp**2
+   end function run_memory
+
+   !> CHECK_MEMORY: a mesh whose run cannot fit in the memory this process
+   !> may have (os's memory_room: the address-space limit, ulimit -v, or
+   !> the machine's memory and swap) is refused at set-up, naming
+   !> n_elements and the estimate, instead of failing in an allocation
+   !> with a run-time error and a backtrace (issue 28, item 6).
+   !>  d      [in]     the deck (for the message)
+   !>  n_el   [in]     elements of the run's mesh (more than n_elements
+   !>                  with a refined zone)
+   !>  npt    [in]     Simpson stations through the thickness
+   !>  errs   [in,out] one error when the run cannot fit
+   subroutine check_memory(d, n_el, npt, errs)
+      type(deck_type), intent(in) :: d
+      integer, intent(in) :: n_el, npt
+      type(error_list), intent(inout) :: errs
+      real(dp) :: need, room
+      character(len=:), allocatable :: what, mesh
+      need = run_memory(n_el, npt)
+      call memory_room(room, what)
+      if (need <= room) return
+      mesh = itoa(n_el)//' elements'
+      if (n_el /= d%n_elements) mesh = mesh//' with the refined zone or the elements refine_exit may split'
+      call add_error(errs, "deck '"//trim(d%deck_file)//"', group &sheet, variable n_elements: "// &
+                     'n_elements = '//itoa(d%n_elements)//' ('//mesh//', thickness_points = '// &
+                     itoa(npt)//') needs about '//mebibytes(need)//' of memory, more than the '// &
+                     mebibytes(max(room, 0.0_dp))//' '//what//' leaves the run: give fewer '// &
+                     'elements or thickness points, or more memory')
+   end subroutine check_memory
+
+   !> MEBIBYTES: a number of bytes as text in MiB ('123.4 MiB').
+   !>  bytes  [in] the number
+   pure function mebibytes(bytes) result(text)
+      real(dp), intent(in) :: bytes
+      character(len=:), allocatable :: text
+      character(len=32) :: buf
+      write (buf, '(f0.1)') bytes/1024.0_dp**2
+      text = trim(buf)//' MiB'
+   end function mebibytes
+
+   !> SMALLEST_RADIUS: the smallest arc radius of a tool, mm; huge() when
+   !> it has no arc.
+   !>  tool  [in] the tool
+   pure function smallest_radius(tool) result(r)
+      type(tool_type), intent(in) :: tool
+      real(dp) :: r
+      integer :: k
+      r = huge(1.0_dp)
+      do k = 1, tool%nseg
+         if (tool%seg(k)%kind == seg_arc) r = min(r, tool%seg(k)%radius)
+      end do
+   end function smallest_radius
 
    !> CONTROLS_OF_DECK: the step and output controls of a deck.
    !>  d    [in]  the deck

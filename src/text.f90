@@ -8,15 +8,24 @@
 !> digit and a finite value, so that list-directed input cannot take '/',
 !> 'T', 'nan' or 'inf' as a number.  The module holds no state.
 module text
-   use, intrinsic :: iso_fortran_env, only: iostat_end, iostat_eor
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use, intrinsic :: ieee_exceptions, only: ieee_usual, ieee_get_halting_mode, &
       ieee_set_halting_mode, ieee_set_flag
    use kinds, only: dp
    implicit none
    private
-   public :: lower, read_line, load_text, strip_comment, split_fields, parse_real
+   public :: lower, next_line, first_long_line, strip_comment, split_fields, parse_real
    public :: itoa, num, file_exists
+   public :: max_input_bytes, max_line_length
+
+   !> The largest input file (deck, hardening curve, tool profile) the
+   !> program reads, bytes (16 MiB: a deck is a few kB, a curve or profile
+   !> of a million points fits); anything longer, /dev/zero included, is
+   !> refused before it can hang the program or fill its memory
+   !> (docs/input-reference.md).
+   integer, parameter :: max_input_bytes = 16*1024*1024
+   !> The longest line of an input file, characters (a 10 kB title fits)
+   integer, parameter :: max_line_length = 65536
 
 contains
 
@@ -34,61 +43,49 @@ contains
       end do
    end function lower
 
-   !> READ_LINE: one whole record of any length from a formatted sequential
-   !> unit.  A last line without an end-of-line marker is a line.
-   !>  unit   [in]  connected unit
-   !>  line   [out] the record, without the end-of-record marker
-   !>  iostat [out] 0 on success, iostat_end at the end of the file, else
-   !>               the error
-   !>  iomsg  [out] the message of a non-zero iostat
-   subroutine read_line(unit, line, iostat, iomsg)
-      integer, intent(in) :: unit
+   !> NEXT_LINE: the line of a text that starts at pos (a file read whole
+   !> by os's read_file), without its line feed; pos moves to the next line.
+   !> A last line without a line feed is a line.
+   !>  text  [in]     the whole text
+   !>  pos   [in,out] where the line starts (1 for the first); on return,
+   !>                 where the next one starts (> len(text) after the last)
+   !>  line  [out]    the line
+   pure subroutine next_line(text, pos, line)
+      character(len=*), intent(in) :: text
+      integer, intent(inout) :: pos
       character(len=:), allocatable, intent(out) :: line
-      integer, intent(out) :: iostat
-      character(len=*), intent(out) :: iomsg
-      character(len=256) :: buf
-      integer :: nread
-      line = ''
-      iomsg = ''
-      do
-         read (unit, '(a)', advance='no', iostat=iostat, iomsg=iomsg, size=nread) buf
-         line = line//buf(:nread)
-         if (iostat == iostat_eor) then
-            iostat = 0
-            exit
-         else if (iostat == iostat_end .and. len(line) > 0) then
-            iostat = 0
-            exit
-         else if (iostat /= 0) then
-            exit
-         end if
-      end do
-   end subroutine read_line
-
-   !> LOAD_TEXT: the whole of a file as one string.
-   !>  path  [in]  file name
-   !>  text  [out] the file's bytes (allocated, possibly of length 0)
-   !>  ios   [out] 0 on success, else the iostat of the failing statement
-   !>  msg   [out] the iomsg when ios /= 0
-   subroutine load_text(path, text, ios, msg)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable, intent(out) :: text
-      integer, intent(out) :: ios
-      character(len=*), intent(out) :: msg
-      integer :: u, n
-      msg = ''
-      text = ''
-      open (newunit=u, file=path, access='stream', form='unformatted', status='old', &
-            action='read', iostat=ios, iomsg=msg)
-      if (ios /= 0) return
-      inquire (unit=u, size=n)
-      if (n > 0) then
-         deallocate (text)
-         allocate (character(len=n) :: text)
-         read (u, iostat=ios, iomsg=msg) text
+      integer :: k
+      k = index(text(pos:), achar(10))
+      if (k == 0) then
+         line = text(pos:)
+         pos = len(text) + 1
+      else
+         line = text(pos:pos + k - 2)
+         pos = pos + k
       end if
-      close (u)
-   end subroutine load_text
+   end subroutine next_line
+
+   !> FIRST_LONG_LINE: the number of the first line of a text longer than
+   !> max_line_length characters (its line feed not counted), 0 if none.
+   !>  text  [in] the whole text
+   pure function first_long_line(text) result(lineno)
+      character(len=*), intent(in) :: text
+      integer :: lineno
+      integer :: pos, k, n
+      lineno = 0
+      pos = 1
+      n = 0
+      do while (pos <= len(text))
+         n = n + 1
+         k = index(text(pos:), achar(10))
+         if (k == 0) k = len(text) - pos + 2
+         if (k - 1 > max_line_length) then
+            lineno = n
+            return
+         end if
+         pos = pos + k
+      end do
+   end function first_long_line
 
    !> STRIP_COMMENT: the part of a line before a comment marker.
    !>  line    [in]  any text

@@ -10,7 +10,10 @@
 # (stderr must contain "variable <name>") or a group written '&group'
 # (stderr must contain "group &group"). Matching "variable <name>" rather
 # than the bare name keeps a deck's file name (bad_left_edge.nml) from
-# passing for the message. One line is printed per deck; the exit status is
+# passing for the message. A comment line "! message: <text>" in the deck
+# asks for that text in stderr too. A deck may take 60 s at most (a hang, such as
+# an endless curve file read forever, is a failure, not a stalled test).
+# One line is printed per deck; the exit status is
 # 0 when all decks pass, 1 when any fails, 2 when the script cannot run.
 set -u
 
@@ -44,20 +47,29 @@ for deck in "${decks[@]}"; do
         continue
     fi
 
+    message=$(sed -n 's/^! message: *//p' "$deck" | head -n 1)
+
     if [[ $expect == '&'* ]]; then
         pattern="group $expect"
     else
         pattern="variable $expect"
     fi
 
-    "$bin" "$deck" >/dev/null 2>"$stderr_file"
+    timeout -k 2 60 "$bin" "$deck" >/dev/null 2>"$stderr_file"
     status=$?
 
-    if ((status != 1)); then
+    if ((status == 124 || status == 137)); then
+        echo "FAIL $deck: no end within 60 s (a hang)"
+        failures=$((failures + 1))
+    elif ((status != 1)); then
         echo "FAIL $deck: exit status $status, expected 1"
         failures=$((failures + 1))
     elif ! grep -qF -- "$pattern" "$stderr_file"; then
         echo "FAIL $deck: stderr does not contain '$pattern':"
+        sed 's/^/    /' "$stderr_file"
+        failures=$((failures + 1))
+    elif [[ -n $message ]] && ! grep -F -- "$pattern" "$stderr_file" | grep -qF -- "$message"; then
+        echo "FAIL $deck: no stderr line holds both '$pattern' and '$message':"
         sed 's/^/    /' "$stderr_file"
         failures=$((failures + 1))
     else

@@ -4,14 +4,22 @@
 #  - command line: exactly one deck, -o needs a value, unknown options,
 #    --help and --version;
 #  - the output directory belongs to the run: an earlier run's files are
-#    removed, summary.txt says status = running while the run goes;
+#    removed, summary.txt says status = running while the run goes; a
+#    second run into it is refused while the first goes, naming the
+#    directory and the first run's process id, and the lock of a killed
+#    run does not block the next (issue 28, item 2);
 #  - SIGTERM stops the run at a converged increment: status = interrupted,
 #    exit 4, every file so far on disk;
 #  - a failed write (a file-size limit, ulimit -f) stops the run: exit 3,
 #    the file and the system's reason named, status never completed;
 #  - -o is taken literally, no shell: '$(touch x)' is a directory name;
 #  - a large mesh (12000 elements) runs (no stack overflow);
-#  - the log ends with the status and the exit code.
+#  - the log ends with the status and the exit code;
+#  - a deck from a pipe (/dev/stdin, bash's <(...)) is read like a file:
+#    nothing seeks in it (issue 28, item 3);
+#  - input files are bounded: /dev/zero as the deck, a deck larger than
+#    16 MiB or with a line longer than 65536 characters are refused at once
+#    (issue 28, item 4; the curve and profile files: tests/bad_decks.sh).
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -52,6 +60,34 @@ expect 1 'text outside any namelist group' 'a gnuplot script is not a deck' -- \
     "$bin" scripts/plot_lock.gp
 expect 1 'text outside any namelist group' 'a binary file is not a deck' -- "$bin" "$bin"
 
+# a deck from a pipe: read whole once, never positioned (issue 28, item 3:
+# it was "Fortran runtime error: Illegal seek", exit 2)
+"$bin" "$deck" -o "$work/file" >/dev/null 2>&1
+# shellcheck disable=SC2002 # the pipe is what is tested, not a redirected file
+cat "$deck" | "$bin" /dev/stdin -o "$work/stdin" >"$work/out" 2>&1
+status=$?
+if ((status == 0)) && cmp -s <(grep -v '^cpu' "$work/file/summary.txt") \
+    <(grep -v '^cpu' "$work/stdin/summary.txt"); then
+    ok "a deck piped to /dev/stdin runs as the file does (exit 0, same summary)"
+else
+    bad "a deck piped to /dev/stdin: exit $status"; sed 's/^/    /' "$work/out" | head -5
+fi
+expect 0 'done, exit code 0' 'a deck from a process substitution <(cat deck) runs' -- \
+    "$bin" <(cat "$deck") -o "$work/subst"
+expect 1 'no namelist group of the program' 'an empty pipe is not a deck' -- \
+    "$bin" <(true) -o "$work/empty_pipe"
+
+# bounded input (issue 28, item 4: /dev/zero as the deck hung, its memory
+# growing, and SIGTERM did not stop it); timeout makes a hang a failure
+expect 1 'larger than 16777216 bytes' '/dev/zero as the deck is refused at the size limit' -- \
+    timeout -k 2 30 "$bin" /dev/zero -o "$work/zero"
+{ cat "$deck"; head -c 17000000 /dev/zero | tr '\0' ' '; } >"$work/huge.nml"
+expect 1 'larger than 16777216 bytes' 'a deck of 17 MB is refused' -- \
+    timeout -k 2 30 "$bin" "$work/huge.nml" -o "$work/huge"
+{ cat "$deck"; printf '! %s\n' "$(head -c 70000 /dev/zero | tr '\0' x)"; } >"$work/long.nml"
+expect 1 'line 34: longer than 65536 characters' 'a deck line of 70000 characters is refused' -- \
+    timeout -k 2 30 "$bin" "$work/long.nml" -o "$work/long"
+
 # the output directory belongs to the run
 mkdir -p "$work/stale"
 printf 'status = completed\n' >"$work/stale/summary.txt"
@@ -70,6 +106,28 @@ if tail -n 1 "$work/log" | grep -q '^# drawbead: done, exit code 0$'; then
 else
     bad "the log's last line is not the status: $(tail -n 1 "$work/log")"
 fi
+
+# one run per output directory (issue 28, item 2: two runs into one
+# directory both ended with exit 0, their files mixed)
+"$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/own" >"$work/own.log" 2>&1 &
+pid=$!
+for _ in $(seq 100); do
+    grep -q 'increments = *[1-9]' "$work/own/summary.txt" 2>/dev/null && break
+    sleep 0.02
+done
+expect 1 "output directory $work/own is in use by another run of drawbead (process id $pid)" \
+    'a second run into a directory in use is refused, naming it and the first run' -- \
+    "$bin" "$deck" -o "$work/own"
+if head -n 1 "$work/own/lock.dat" | grep -q 'Fig. 7b' &&
+    grep -q '^status = running$' "$work/own/summary.txt"; then
+    ok "the refused run left the first run's files alone"
+else
+    bad "the refused run wrote into the first run's directory"
+fi
+kill -KILL "$pid"
+wait "$pid" 2>/dev/null
+expect 0 'done, exit code 0' 'the lock of a killed run does not block the next run' -- \
+    "$bin" "$deck" -o "$work/own"
 
 # SIGTERM: status running while the run goes, interrupted after
 "$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/term" >"$work/term.log" 2>&1 &
@@ -110,6 +168,15 @@ if [[ -d "$work/\$(touch x)" && ! -e $work/x ]]; then
 else
     bad "-o '\$(touch x)' was handed to a shell"
 fi
+
+# a mesh that cannot fit in the memory the run may have is refused at
+# set-up, naming n_elements and the estimate (issue 28, item 6: gfortran's
+# "Error allocating ... bytes" and a backtrace, exit 1 as for bad input)
+in_40mb() { (ulimit -v 40000 && exec "$@"); }
+printf '&sheet n_elements = 20000 /\n&loading pull_distance = 0.02 /\n' >"$work/oom.nml"
+expect 1 "variable n_elements: n_elements = 20000 (20000 elements, thickness_points = 21) needs about" \
+    'a mesh beyond the address-space limit (ulimit -v 40000) is refused at set-up' -- \
+    in_40mb "$bin" "$work/oom.nml" -o "$work/oom"
 
 # a large mesh runs (no stack overflow)
 printf '&sheet n_elements = 12000 /\n&loading pull_distance = 0.02 /\n' >"$work/big.nml"
