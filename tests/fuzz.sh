@@ -11,7 +11,7 @@
 #   --first K    number of the first case (default 0): `--first 1234
 #                --cases 1` runs case 1234 of a longer run alone
 #   -j N         cases run at a time (default 2)
-#   --timeout S  seconds a case may run (default 10): more is a hang
+#   --timeout S  seconds a case may run (default 120): more is a hang
 #   --keep DIR   where the failing cases go (default out/fuzz_failures;
 #                emptied first)
 #   --no-replay  skip part a)
@@ -42,7 +42,13 @@
 #      (replays it), stdout.txt, stderr.txt and verdict.txt; the distinct
 #      failures are listed, each with a count and its first case.
 # 600 cases take about 8 s on 2 cores (the checked build: about 65 s); the
-# replay, the time limit once if any deck hangs.  Exit status 0 if all
+# replay, the time limit once if any deck hangs.  The limit is far above
+# any case's run: a mutation may make a fine mesh that runs to the end
+# (case 338 of seed 1, a refined zone of 0.0085 mm, 820 elements: 3 s of
+# CPU with the release build, 30 s with the checked one, 56 s of wall
+# time on a busy machine), where before Newton recognised the round-off
+# floor of such meshes (docs/theory.md §8.2) it stopped in its first
+# increment.  Exit status 0 if all
 # pass, 1 if any fails, 2 if the test cannot run.
 set -u
 # the cases run several at a time: one thread each (docs/performance.md)
@@ -158,7 +164,7 @@ fi
 # Options
 # ---------------------------------------------------------------------------
 prog=${DRAWBEAD:-bin/drawbead}
-seed=1 cases=600 first=0 jobs=2 limit=10 keep=out/fuzz_failures replay=1
+seed=1 cases=600 first=0 jobs=2 limit=120 keep=out/fuzz_failures replay=1
 usage() {
     echo "usage: tests/fuzz.sh [PROGRAM] [--seed N] [--cases N] [--first K] [-j N] [--timeout S] [--keep DIR] [--no-replay]" >&2
     exit 2
