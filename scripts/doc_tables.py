@@ -288,6 +288,59 @@ def neck_decks(ctx, folder, zone_h=None):
     return decks
 
 
+def stopped_decks(ctx, folder, decks):
+    """Copies of decks stopped at the tearing point (stop_at_localization =
+    .true.), named like the decks, in folder."""
+    ndir = os.path.join(ctx.tmp, folder)
+    os.makedirs(ndir, exist_ok=True)
+    copies = []
+    for deck in decks:
+        text = read_doc(deck)
+        if "stop_at_localization = .false." not in text:
+            raise RuntimeError(f"{deck}: no stop_at_localization = .false.")
+        copy = os.path.join(ndir, os.path.basename(deck))
+        with open(copy, "w") as out:
+            out.write(text.replace("stop_at_localization = .false.", "stop_at_localization = .true."))
+        copies.append(copy)
+    return copies
+
+
+DEFAULT_DECKS = NECK_DECKS + ["input/cc_beadA_aluminium.nml", "input/cc_beadB_aluminium.nml",
+                              "input/cc_beadA_hss.nml", "input/cc_beadB_hss.nml"]
+
+
+def gen_tearing_default(ctx):
+    """docs/validation.md: the tearing point on the default path (refine_exit,
+    theory 7.6): the clamped continuum-check decks stopped at the tearing
+    point, scripts/convergence.sh -m -n "80 160 320 640" and -s, verbatim,
+    then from the 80-element summaries the phase, the tearing point, the
+    first split's pull, the splits, the split span and the elements."""
+    decks = stopped_decks(ctx, "default_decks", [d for d in DEFAULT_DECKS if os.path.exists(os.path.join(ROOT, d))])
+    mesh = script_output(ctx, ["scripts/convergence.sh", "-m", "-o", os.path.join(ctx.tmp, "default_mesh"),
+                               "-n", "80 160 320 640"] + decks)
+    steps = script_output(ctx, ["scripts/convergence.sh", "-s", "-o", os.path.join(ctx.tmp, "default_step")]
+                          + decks)
+    lines = ["", "%-22s %6s %8s %8s %8s %6s %9s %9s %8s" % ("deck (80 elements)", "phase", "tear/h", "lock/h",
+                                                             "split/h", "splits", "from/h", "to/h", "elements")]
+    for deck in decks:
+        name = os.path.basename(deck)[:-4]
+        summ = read_summary(os.path.join(ctx.tmp, "default_mesh", f"{name}_80", "summary.txt"))
+
+        def num(key, fmt):
+            v = summ.get(key, "none")
+            return fmt % float(v) if v != "none" else fmt.replace(".3f", "s").replace(".2f", "s") % v
+        lines.append("%-22s %6s %s %s %s %6s %s %s %8s" % (name, summ.get("tearing_phase"),
+                                                         num("tearing_delta_over_h", "%8.3f"),
+                                                         num("tearing_lock_over_h", "%8.3f"),
+                                                         num("split_load_over_h", "%8.3f"), summ.get("split_count"),
+                                                         num("split_from_over_h", "%9.2f"),
+                                                         num("split_to_over_h", "%9.2f"), summ.get("elements")))
+    text = ('```\n$ scripts/convergence.sh -m -n "80 160 320 640" <the decks, stop_at_localization = .true.>\n'
+            + mesh + "\n\n$ scripts/convergence.sh -s <the same decks>\n" + steps + "\n" + "\n".join(lines)
+            + "\n```")
+    return lambda raw: text
+
+
 def gen_tearing_neck(ctx):
     """docs/validation.md: the clamped steel continuum-check decks with
     refine_neck, stopped at the tearing point, scripts/convergence.sh -m -n
@@ -407,6 +460,8 @@ GENERATORS = {
                             "scripts/convergence.sh -m -n \"96 192 384\" on fig9c"),
     "tearing_convergence": ("docs/validation.md", gen_tearing_convergence,
                             "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks"),
+    "tearing_default": ("docs/validation.md", gen_tearing_default,
+                        "scripts/convergence.sh -m and -s on the clamped cc_ decks stopped at tearing (refine_exit)"),
     "tearing_neck": ("docs/validation.md", gen_tearing_neck,
                      "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks with refine_neck"),
     "tearing_neck_steps": ("docs/validation.md", gen_tearing_neck_steps,

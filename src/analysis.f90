@@ -91,7 +91,7 @@ contains
 
    !> RUN_PHASE: advance the load parameter from p0 to p1 with adaptive
    !> increments; commit, check the criteria and write a row per increment.
-   !>  m     [in,out] model (its elements split once while pulling, §7.6)
+   !>  m     [in,out] model (its elements split while pulling, §7.6)
    !>  ctl   [in]  controls (increments, tolerances, criteria, output)
    !>  s     [in,out] state, converged at p0 on entry
    !>  phase [in]  'lock' or 'pull'
@@ -122,7 +122,7 @@ contains
       eh = m%youngs*h
       ell = ctl%tearing_length_over_h*h
       pulled = node_dof(m%n_nodes, dof_v)
-      allocate (r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el))
+      allocate (r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el), dof_scale(m%n_dof))
       dof_scale = phase_dof_scale(m)
       call band_init(kb, m%n_dof, half_band, half_band)
       p = p0
@@ -369,18 +369,23 @@ contains
             if (rec%status /= run_ok) return
             if (any(pieces > 1)) then
                u_prev = s%u - split_field(x_old, pieces, u_prev)
-               ind_old = s%indicator
-               nl_old = strain_limit_indicator(m, s%gpn(igp_strain, :, :), ell)
+               ! the averaged-strain indicator of the state before the
+               ! split, on the new stations: a crossing by the split's own
+               ! state is found at the next increment
+               nl_old = pack(split_stations(pieces, reshape(nl_old, [1, n_gauss, size(pieces)])), .true.)
                if (rec%split%count == 1) then
                   ! the load maximum is looked for on the split mesh's path
                   rec%max_at = 0
                   rec%split%pull_first = rec%n_pull + 1
-               else if (allocated(rec%strain_at_max)) then
+                  if (allocated(rec%strain_at_max)) deallocate (rec%strain_at_max)
+               else if (rec%max_at > 0 .and. allocated(rec%strain_at_max)) then
                   ! a later split: the candidate's strains follow the mesh
                   rec%strain_at_max = pack(split_stations(pieces, &
                                            reshape(rec%strain_at_max, [1, n_gauss, size(pieces)])), .true.)
                end if
                pulled = node_dof(m%n_nodes, dof_v)
+               deallocate (dof_scale)
+               allocate (dof_scale(m%n_dof))
                dof_scale = phase_dof_scale(m)
                call band_init(kb, m%n_dof, half_band, half_band)
                rec%reactions = r
@@ -459,7 +464,7 @@ contains
    !>                   the mapped state finds no equilibrium
    !>  p       [in]     the pull, mm
    !>  pieces  [out]    the parts each old element was split into
-   !>  r       [out]    the residual of the re-equilibrated state (its
+   !>  r       [in,out] reallocated: the residual of the re-equilibrated state (its
    !>                   reactions at the prescribed dofs), on the new mesh
    subroutine refine_at_exit(m, ctl, s, rec, p, pieces, r)
       type(model_type), intent(inout) :: m
@@ -469,12 +474,11 @@ contains
       real(dp), intent(in) :: p
       integer, allocatable, intent(out) :: pieces(:)
       real(dp), allocatable, intent(inout) :: r(:)
-      type(load_type) :: ld
+      type(load_type) :: ld, ld_step
       type(band_matrix) :: kb
       type(newton_result) :: nr
-      type(load_type) :: ld_step
-      real(dp), allocatable :: r0(:)
-      real(dp) :: x_exit, h, f_scale, pnewdt, alpha, da, force_change
+      real(dp), allocatable :: r0(:), u_mapped(:)
+      real(dp) :: x_exit, h, f_scale, pnewdt, alpha, da, force_change, energy_before(5), energy_after(5), work_dead
       logical :: found
       integer :: first, last, steps
       h = m%thickness
@@ -503,8 +507,13 @@ contains
          p/h, ' the elements from s/h = ', m%x(first)/h, ' to ', m%x(last + 1)/h, &
          ' split (exit of the last radius at x/h = ', x_exit/h, '): ', m%n_el, ' -> ', &
          sum(pieces), ' elements'
+      ! the energies the split changes (the stations' densities are
+      ! interpolated, and re-equilibration does work against the imbalance
+      ! it removes): booked apart, so that the balance still checks the rest
+      call energy_totals(m, s, energy_before)
       call split_elements(m, s, pieces)
       rec%split%elements_after = m%n_el
+      u_mapped = s%u
       ! the mapped state in equilibrium at the same load: its imbalance r0
       ! (the mapped stresses are not in equilibrium on the new stations) is
       ! removed gradually, as a load, f_ext + (1 - alpha) r0 with alpha from
@@ -541,12 +550,25 @@ contains
             if (da < 1.0_dp/4096.0_dp) exit
          end if
       end do
-      if (alpha < 1.0_dp) then
+      if (pnewdt < 1.0_dp) then
+         rec%status = run_no_convergence
+         rec%message = 'in pull: a material point of the state mapped onto the split mesh cannot be updated:'// &
+                       ' set &sheet refine_exit = .false.'
+         return
+      else if (alpha < 1.0_dp) then
          rec%status = run_no_convergence
          write (rec%message, '(a,f0.4,a)') 'in pull: no equilibrium of the state mapped onto the '// &
             'split mesh (', alpha, ' of its imbalance removed): set &sheet refine_exit = .false.'
          return
       end if
+      ! the dead loads' work over the re-equilibration is external work; the
+      ! rest of the change of the stored, dissipated and thickness-stress
+      ! energies is the split's (docs/theory.md §7.6)
+      work_dead = dot_product(ld%f_ext, s%u - u_mapped)
+      rec%work = rec%work + work_dead
+      call energy_totals(m, s, energy_after)
+      rec%split%energy_change = rec%split%energy_change + (sum(energy_after(1:4)) - energy_after(5)) &
+                                - (sum(energy_before(1:4)) - energy_before(5)) - work_dead
       force_change = r(node_dof(m%n_nodes, dof_v))/rec%last_conjugate - 1.0_dp
       if (rec%split%count == 1) rec%split%force_change = force_change
       write (output_unit, '(a,i0,a,es9.2,a,f8.5)') '# drawbead: refine_exit: re-equilibrated in ', steps, &

@@ -310,6 +310,7 @@ contains
          g_old = g
       end do
    end function max_load_strain
+
    !> MATERIAL_STATE_MAPPED: state variables interpolated between material
    !> points (remesh, docs/theory.md §7.6) made consistent for the next
    !> update: the built-in law's cached flow stress and hardening slope

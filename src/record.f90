@@ -47,6 +47,10 @@ module record
       integer :: elements_before = 0, elements_after = 0
       integer :: pull_first = 1
       real(dp) :: force_change = 0.0_dp
+      ! the change of the stored, dissipated and thickness-stress energies
+      ! (N mm/mm) over the splits beyond the dead loads' work: the mapping's
+      ! share, kept out of the energy balance
+      real(dp) :: energy_change = 0.0_dp
    end type split_record
 
    !> What the run has found so far (written to summary.txt).
@@ -161,9 +165,9 @@ contains
       character(len=160) :: buf
       note = ''
       if (rec%split%count == 0) return
-      write (buf, '(a,f0.4,a,i0,a,i0,a)') ' (on the mesh split at pull/h = ', rec%split%load/h, ': ', &
-         rec%split%elements_after, ' elements, ', rec%split%elements_before, &
-         ' before; the rows follow the mesh, docs/theory.md §7.6)'
+      write (buf, '(a,f0.4,a,i0,a,i0,a,i0,a)') ' (on the mesh split from pull/h = ', rec%split%load/h, &
+         ' on, ', rec%split%count, ' times: ', rec%split%elements_after, ' elements, ', &
+         rec%split%elements_before, ' before; the rows follow the mesh, docs/theory.md §7.6)'
       note = trim(buf)
    end function split_note
 end module record

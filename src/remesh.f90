@@ -19,7 +19,8 @@
 !>    value would enter the next increment as a strain jump);
 !>  - a contact station takes the column of the nearest old station (its
 !>    sense, slip and dissipation), with its position and gap set to the
-!>    new station's own, so that no slip is counted for the move.
+!>    new station's own, so that no slip is counted for the move, and in
+!>    contact as its gap says (out of contact without a slip history).
 !> The caller re-equilibrates the mapped state at the same load before the
 !> next increment (analysis's refine_at_exit).
 module remesh
@@ -30,7 +31,8 @@ module remesh
    use kinematics, only: strain_measures
    use section, only: ih_strain, ih_zbar, ih_statev, ih_stress22
    use material, only: material_state_mapped
-   use contact, only: ich_position, ich_penetration, ich_hint, ich_active
+   use contact, only: ich_position, ich_penetration, ich_hint, ich_active, ich_slip, ich_slip_max, &
+                      ich_sense, ich_traction
    use tool_distance, only: tool_gap
    use tools, only: seg_arc
    use model, only: model_type, state_type
@@ -226,6 +228,14 @@ contains
                                 hint=nint(cn(ich_hint, ig, f, it)))
                   cn(ich_penetration, ig, f, it) = d
                   cn(ich_hint, ig, f, it) = real(seg, dp)
+                  ! in contact as its own gap says (contact_station's
+                  ! rule): a station out of contact keeps no slip history,
+                  ! one in contact keeps its neighbour's
+                  if (d > 0.0_dp) then
+                     cn(ich_active, ig, f, it) = 1.0_dp
+                  else
+                     cn([ich_active, ich_slip, ich_slip_max, ich_sense, ich_traction], ig, f, it) = 0.0_dp
+                  end if
                end do
             end do
          end do

@@ -151,7 +151,8 @@ contains
       ! maximum converges on elements of 0.1h at the neck (§7.5)
       if (.not. rec%torn) then
          call add(text, 'tearing_mesh_dependent = none')
-      else if (ctl%tearing_criterion == 'section' .or. rec%tear_element > 0.1_dp*h*(1.0_dp + 1.0e-6_dp)) then
+      else if (ctl%tearing_criterion == 'section' .or. &
+               (rec%tear_phase == 'pull' .and. rec%tear_element > 0.1_dp*h*(1.0_dp + 1.0e-6_dp))) then
          call add(text, 'tearing_mesh_dependent = yes')
       else
          call add(text, 'tearing_mesh_dependent = no')
@@ -183,13 +184,15 @@ contains
       call put(text, 'energy_penalty', energy(3), .true.)
       call put(text, 'energy_friction', energy(4), .true.)
       call put(text, 'energy_normal_stress', energy(5), .true.)
-      call put(text, 'energy_balance_error', (rec%work + energy(5) - sum(energy(1:4))) &
+      ! (the splits' share of the energies is booked apart, theory §7.6)
+      call put(text, 'energy_balance_error', (rec%work + energy(5) - sum(energy(1:4)) + rec%split%energy_change) &
                               /max(abs(rec%work), tiny(1.0_dp)), rec%work > 0.0_dp)
       pull_work = rec%work - rec%work_pull_start
       de = energy - rec%energy_pull_start
       call put(text, 'pull_work', pull_work, rec%n_pull > 0)
       call put(text, 'pull_energy_balance_error', &
-                              (pull_work + de(5) - sum(de(1:4)))/max(abs(pull_work), tiny(1.0_dp)), &
+                              (pull_work + de(5) - sum(de(1:4)) + rec%split%energy_change) &
+                              /max(abs(pull_work), tiny(1.0_dp)), &
                               rec%n_pull > 0 .and. pull_work > 0.0_dp)
       ! the neck's refined zone (&sheet refine_neck, docs/theory.md §7.5)
       call add(text, 'neck_refinement = '//trim(rec%neck%refinement))
@@ -217,6 +220,7 @@ contains
       call put(text, 'split_to_over_h', rec%split%zone(2)/h, split)
       call put(text, 'split_force_change', rec%split%force_change, split)
       call add(text, 'split_count = '//itoa(rec%split%count))
+      call put(text, 'split_energy_change', rec%split%energy_change, split)
       if (split) then
          call add(text, 'split_elements_before = '//itoa(rec%split%elements_before))
       else

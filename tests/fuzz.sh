@@ -66,7 +66,7 @@ top=$PWD
 # Running one deck and judging its outcome
 # ---------------------------------------------------------------------------
 runtime_error_re='Fortran runtime error|Error termination|Backtrace|Program received signal|SIGSEGV|Floating-point exception'
-summary_words='completed|localized|torn|no_convergence|interrupted|write_failed|running|lock|pull|none|load_maximum|section|off|zone|first'
+summary_words='completed|localized|torn|no_convergence|interrupted|write_failed|running|lock|pull|none|load_maximum|section|off|zone|first|yes|no'
 
 # summary_problem FILE: prints why FILE is not a valid summary (nothing if it is)
 summary_problem() {
