@@ -284,6 +284,33 @@ def physical_points(pieces, side, d, x_lo, x_hi, ds):
     return pts
 
 
+def chain_height(pieces, x, h):
+    """Height of a centreline chain at abscissa x (its end pieces continued
+    along their tangents; at a vertical wall the first crossing counts)."""
+    pts = physical_points(pieces, 'upper', 0.0, x - h, x + h, h / 8)
+    for a, b in zip(pts, pts[1:]):
+        lo, hi = min(a[0], b[0]), max(a[0], b[0])
+        if lo <= x <= hi and hi > lo:
+            return a[1] + (b[1] - a[1]) * (x - a[0]) / (b[0] - a[0])
+    fail('a tool chain does not reach the sheet edge at x = %.6g mm' % x)
+
+
+def edge_heights(up, lo, x, lock):
+    """Time points and heights of an edge's centreline while locking
+    (docs/theory.md (8.1)): w = min(max(y_lower(x) + H, 0), y_upper(x)),
+    H = lock t the lower tool's lift; piecewise linear in t."""
+    yl, yu = chain_height(lo, x, 1.0), chain_height(up, x, 1.0)
+
+    def w(t):
+        return min(max(yl + lock * t, 0.0), yu)
+    ts = {0.0, 1.0}
+    if lock != 0.0:
+        for t in (-yl / lock, (yu - yl) / lock):
+            if 0.0 < t < 1.0:
+                ts.add(t)
+    return [(t, w(t)) for t in sorted(ts)]
+
+
 # ---------------------------------------------------------------------------
 # Material
 # ---------------------------------------------------------------------------
@@ -431,6 +458,16 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
                 faces.append(eid)
             tool_nodes[side], tool_elems[side], tool_faces[side] = coords, els, faces
 
+    # the edges' heights while locking (docs/theory.md (8.1)): y = 0 for the
+    # paper's beads, on the lower tool's face where it rises above y = 0
+    # (a lock step at the edge), never above the upper tool's face
+    edge_amp = {}
+    if tool_nodes:
+        for name, x in (('LEFT', -half), ('RIGHT', half)):
+            pts = edge_heights(up, lo, x, lock)
+            if any(abs(wv) > 1e-12 for _, wv in pts):
+                edge_amp[name] = pts
+
     path = os.path.join(out_dir, 'continuum.inp')
     with open(path, 'w') as f:
         f.write('** drawbead continuum cross-check (scripts/continuum_model.py)\n')
@@ -489,7 +526,13 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
                     f.write('2\n%d, 1, 1., %d, 1, -1.\n' % (n, lmid))
         f.write('*AMPLITUDE, NAME=ALOCK\n0., 0., 1., 1., 2., 1.\n')
         f.write('*AMPLITUDE, NAME=APULL\n0., 0., 1., 0., 2., 1.\n')
-        f.write('*BOUNDARY\n%d, 2, 2\n%d, 2, 2\n' % (lmid, rmid))
+        for name, pts in edge_amp.items():
+            f.write('*AMPLITUDE, NAME=AEDGE%s\n' % name)
+            write_lines(f, ['%.12g, %.12g' % p for p in pts + [(2.0, pts[-1][1])]], per_line=4)
+        f.write('*BOUNDARY\n')
+        for name, n in (('LEFT', lmid), ('RIGHT', rmid)):
+            if name not in edge_amp:
+                f.write('%d, 2, 2\n' % n)
         if not left_free:
             f.write('NLEFT, 1, 1\n')
         if tool_nodes:
@@ -509,6 +552,9 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
             f.write('*BOUNDARY, AMPLITUDE=ALOCK\nNLOWER, 2, 2, %.12g\n' % lock)
         elif tool_nodes:
             f.write('*BOUNDARY\nNLOWER, 2, 2\n')
+        for name, n in (('LEFT', lmid), ('RIGHT', rmid)):
+            if name in edge_amp:
+                f.write('*BOUNDARY, AMPLITUDE=AEDGE%s\n%d, 2, 2, 1.\n' % (name, n))
         if pull != 0.0:
             f.write('*BOUNDARY, AMPLITUDE=APULL\nNRIGHT, 1, 1, %.12g\n' % pull)
         else:
@@ -531,6 +577,7 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
         'node_y': {str(n): y for n, _, y in nodes if n in set(mid) | set(top) | set(bot)},
         'mid': mid, 'top': top, 'bottom': bot, 'n_sheet_elements': n_sheet_elems,
         'bead_half_width': bead_half_width(tools, bead, h),
+        'edge_heights': {k.lower(): v for k, v in edge_amp.items()},
     }
     with open(os.path.join(out_dir, 'continuum_model.json'), 'w') as f:
         json.dump(info, f)
