@@ -168,6 +168,10 @@ contains
                tag = 'singular'
             case default
                tag = 'diverged'
+               ! (a residual that ends within a few times its round-off
+               ! floor stalled there, docs/theory.md §8.2)
+               if (nr%residual(max(nr%iterations - 1, 0)) <= 4.0_dp*nr%round_off(max(nr%iterations - 1, 0))) &
+                  tag = 'round-off'
             end select
             write (output_unit, '(a5,1x,a,es10.3,a,i3,a,es9.2,2a)') phase, 'cutback  d/h=', dt/h, &
                '  it', nr%iterations, '  res', nr%residual(max(nr%iterations - 1, 0)), '  ', trim(tag)
@@ -307,6 +311,7 @@ contains
             merge(' NONLOCAL', '         ', rec%nl_localized)
          if (ctl%log_residuals) then
             write (output_unit, '(a,*(es9.2))') '      residuals:', nr%residual(0:nr%iterations)
+            write (output_unit, '(a,*(es9.2))') '      round-off:', nr%round_off(0:nr%iterations)
             write (output_unit, '(a,*(i9))') '      plastic:  ', nr%plastic(0:nr%iterations)
             write (output_unit, '(a,*(i9))') '      switched: ', nr%switched(0:nr%iterations)
          end if
