@@ -431,18 +431,18 @@ def gen_contact_cost(ctx):
 
 def gen_neck_cost(ctx):
     """docs/performance.md: the clamped steel continuum-check decks stopped
-    at the tearing point, on their uniform mesh and with refine_neck
+    at the tearing point, on their uniform mesh (refine_exit = .false.), on
+    the default path (refine_exit, theory 7.6) and with refine_neck
     (neck_decks), 1 and 2 threads, three runs each, scripts/bench.sh
     --markdown --no-scaling, verbatim."""
-    plain = []
-    pdir = os.path.join(ctx.tmp, "plain_decks")
-    os.makedirs(pdir, exist_ok=True)
-    for deck in NECK_DECKS:
-        copy = os.path.join(pdir, os.path.basename(deck))
-        with open(copy, "w") as out:
-            out.write(read_doc(deck).replace("stop_at_localization = .false.", "stop_at_localization = .true."))
-        plain.append(copy)
-    decks = [d for pair in zip(plain, neck_decks(ctx, "neck_cost_decks")) for d in pair]
+    default = stopped_decks(ctx, "default_cost_decks", NECK_DECKS)
+    uniform = []
+    for deck in default:
+        copy = deck[:-4] + "_uniform.nml"
+        with open(deck) as src, open(copy, "w") as out:
+            out.write(src.read().replace("\n&sheet\n", "\n&sheet\n   refine_exit = .false.\n", 1))
+        uniform.append(copy)
+    decks = [d for triple in zip(uniform, default, neck_decks(ctx, "neck_cost_decks")) for d in triple]
     out = script_output(ctx, ["scripts/bench.sh", "--markdown", "-n", "3", "--no-scaling",
                               "--keep", os.path.join(ctx.tmp, "neck_cost")] + decks)
     return lambda raw: out
@@ -473,7 +473,7 @@ GENERATORS = {
                      "scripts/bench.sh on every input/fig*.nml and its copy with the contact section"
                      " (not checkable)"),
     "neck_cost": ("docs/performance.md", gen_neck_cost,
-                  "scripts/bench.sh on the clamped cc_ steel decks stopped at tearing, uniform and with refine_neck"
+                  "scripts/bench.sh on the clamped cc_ steel decks stopped at tearing: uniform, default path, refine_neck"
                   " (not checkable)"),
     "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5: 1 and 2 threads, scaling (not checkable)"),
 }
