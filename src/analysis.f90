@@ -367,6 +367,8 @@ contains
             end if
          end if
          if (split_due) then
+            if (allocated(x_old)) deallocate (x_old)
+            allocate (x_old(m%n_nodes))
             x_old = m%x
             ! the last increment's motion, carried to the new mesh below
             u_prev = s%u - u_prev
@@ -518,6 +520,7 @@ contains
       call energy_totals(m, s, energy_before)
       call split_elements(m, s, pieces)
       rec%split%elements_after = m%n_el
+      allocate (u_mapped(m%n_dof))
       u_mapped = s%u
       ! the mapped state in equilibrium at the same load: its imbalance r0
       ! (the mapped stresses are not in equilibrium on the new stations) is
