@@ -107,14 +107,21 @@ else
     bad "the log's last line is not the status: $(tail -n 1 "$work/log")"
 fi
 
+# start_run NAME: input/fig7b_beadA_steel_mu0.nml in the background into
+# $work/NAME (its log $work/NAME.log), its pid in pid, back once its first
+# increment is in summary.txt (or after 2 s)
+start_run() {
+    "$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/$1" >"$work/$1.log" 2>&1 &
+    pid=$!
+    for _ in $(seq 100); do
+        grep -q 'increments = *[1-9]' "$work/$1/summary.txt" 2>/dev/null && break
+        sleep 0.02
+    done
+}
+
 # one run per output directory (issue 28, item 2: two runs into one
 # directory both ended with exit 0, their files mixed)
-"$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/own" >"$work/own.log" 2>&1 &
-pid=$!
-for _ in $(seq 100); do
-    grep -q 'increments = *[1-9]' "$work/own/summary.txt" 2>/dev/null && break
-    sleep 0.02
-done
+start_run own
 expect 1 "output directory $work/own is in use by another run of drawbead (process id $pid)" \
     'a second run into a directory in use is refused, naming it and the first run' -- \
     "$bin" "$deck" -o "$work/own"
@@ -130,12 +137,7 @@ expect 0 'done, exit code 0' 'the lock of a killed run does not block the next r
     "$bin" "$deck" -o "$work/own"
 
 # SIGTERM: status running while the run goes, interrupted after
-"$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/term" >"$work/term.log" 2>&1 &
-pid=$!
-for _ in $(seq 100); do
-    grep -q 'increments = *[1-9]' "$work/term/summary.txt" 2>/dev/null && break
-    sleep 0.02
-done
+start_run term
 if grep -q '^status = running$' "$work/term/summary.txt" 2>/dev/null; then
     ok "summary.txt says status = running during the run"
 else
