@@ -1,39 +1,34 @@
 !> umat_linear_hardening -- an example of a user's material routine for
 !> drawbead: von Mises plasticity with linear isotropic hardening,
-!>   sigma_y = sigma0 + H ebar_p.
+!>   sigma_y = sigma0 + H ebar_p,
+!> written as for an Abaqus plane-strain element.
 !>
 !> Build it into the program with
 !>   make UMAT=input/umat_linear_hardening.f90
-!> (any file with an external `subroutine umat` of this argument list will
-!> do; the list, and what drawbead passes in each argument, is written in
-!> src/material.f90).  It gives the same results as the built-in law with
-!> a 'table' curve of the two points (0, sigma0), (1, sigma0 + H), which
-!> the last segment extrapolates (tests/unit/test_material.pf checks it).
+!> and name it in the deck with model = 'umat', umat_props = E, nu,
+!> sigma0, H, umat_nstatv = 1, umat_eqps_index = 1 (the argument list, and
+!> what drawbead passes in each argument, is written in src/law_umat.f90).
+!> It gives the same results as the built-in law with a 'table' curve of
+!> the two points (0, sigma0), (1, sigma0 + H), which the last segment
+!> extrapolates (tests/unit/test_law_umat.pf checks it).
 !>
-!> Conventions (those of the program): NDI = 2, NSHR = 0, NTENS = 2;
-!> components (11, 33) = (axial, width); the thickness direction 22 has
-!> sigma22 = 0.  Kirchhoff stress, logarithmic strain, additive
-!> elasto-plasticity, backward Euler.
+!> Conventions: NDI = 3, NSHR = 1, NTENS = 4, components (11, 22, 33, 12),
+!> engineering shear strain; Kirchhoff stress, logarithmic strain, additive
+!> elasto-plasticity, backward Euler (radial return).  The program holds
+!> the width strain and drives the thickness strain itself; this routine
+!> knows nothing of either.
 !>
 !> Constants:  props(1) = E, props(2) = nu, props(3) = sigma0, props(4) = H.
-!> State variables (NSTATV = 6; the program reads 1, 2 and 4, so they must
-!> mean what they mean for the built-in law):
-!>   statev(1) ebar_p, equivalent plastic strain
-!>   statev(2) eps22, total thickness log strain
-!>   statev(3) sigma33 (a copy, for output)
-!>   statev(4) continuum tangent d sigma11 / d eps11 at fixed eps33
-!>             (elastic value after an elastic increment)
-!>   statev(5) sigma_y(ebar_p),  statev(6) H
+!> State variables (NSTATV = 1):  statev(1) ebar_p.
 !>
-!> Stress update.  Hooke's law in plane stress, D = E/(1 - nu^2) [[1, nu],
-!> [nu, 1]], gives the trial stress; beyond the yield surface the end stress
-!> is sigma = sigma_trial - dp D n, n = P sigma / sbar, P = [[1, -1/2],
-!> [-1/2, 1]], sbar^2 = s11^2 + s33^2 - s11 s33.  In s = s11 + s33 and
-!> t = s11 - s33 both D and P are diagonal, so with gamma = dp / sbar
-!>   s = s_trial / (1 + gamma E/(2 (1 - nu))),
-!>   t = t_trial / (1 + gamma 3E/(2 (1 + nu))),   sbar = sqrt(s^2 + 3 t^2)/2,
-!> and the one unknown gamma solves f = sbar - sigma0 - H (ebar_p,n + gamma
-!> sbar) = 0 (Newton from gamma = 0).
+!> Stress update.  Trial sigma_tr = sigma + D dstran; with s_tr its
+!> deviator and q_tr = sqrt(3/2 s_tr : s_tr), a plastic increment has
+!>   dp = (q_tr - sigma0 - H ebar_p,n)/(3 mu + H),
+!>   sigma = sigma_tr - 2 mu dp n,  n = (3/2) s_tr / q_tr,
+!> and the consistent tangent (Simo & Hughes 1998, box 3.2)
+!>   C = K 1 x 1 + 2 mu theta I_dev - 2 mu theta_bar N x N,
+!>   N = s_tr/|s_tr|, theta = 1 - 3 mu dp/q_tr,
+!>   theta_bar = 1/(1 + H/(3 mu)) - (1 - theta).
 subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, &
                 stran, dstran, time, dtime, temp, dtemp, predef, dpred, cmname, ndi, &
                 nshr, ntens, nstatv, props, nprops, coords, drot, pnewdt, celent, dfgrd0, &
@@ -49,11 +44,9 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
                            dfgrd0(3, 3), dfgrd1(3, 3)
 
    real(dp), parameter :: tol = 1.0e-12_dp
-   integer, parameter :: max_iter = 100
-   real(dp) :: e_mod, nu, sigma0, h, e_ps, d(2, 2), trial(2), ep_n, sy, seq
-   real(dp) :: k_s, k_t, s_tr, t_tr, gam, s, t, f, ds, dt, dseq, dep, n(2), a(2, 2), xi(2, 2)
-   real(dp) :: xn(2), dn(2), dsig(2)
-   integer :: iter, j
+   real(dp) :: e_mod, nu, sigma0, h, mu, k_bulk, lam, trial(4), dev(4), q_tr, ep_n, sy, dep, &
+               nrm(4), theta, theta_bar, s_norm
+   integer :: i, j
 
    ! Arguments this law does not need, named once so that the compiler does
    ! not report them as unused.
@@ -69,7 +62,7 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
    drpldt = 0.0_dp
    ddsdde = 0.0_dp
    ! wrong sizes: a programming error, no increment can help
-   if (ndi /= 2 .or. nshr /= 0 .or. ntens /= 2 .or. nstatv < 6 .or. nprops < 4) then
+   if (ndi /= 3 .or. nshr /= 1 .or. ntens /= 4 .or. nstatv < 1 .or. nprops < 4) then
       pnewdt = 0.0_dp
       return
    end if
@@ -78,100 +71,52 @@ subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpl
    nu = props(2)
    sigma0 = props(3)
    h = props(4)
-   e_ps = e_mod/(1.0_dp - nu**2)
-   d = e_ps*reshape([1.0_dp, nu, nu, 1.0_dp], [2, 2])
+   mu = e_mod/(2.0_dp*(1.0_dp + nu))
+   k_bulk = e_mod/(3.0_dp*(1.0_dp - 2.0_dp*nu))
+   lam = k_bulk - 2.0_dp*mu/3.0_dp
 
-   ! elastic predictor
+   ! the elastic stiffness (engineering shear strain)
+   do j = 1, 3
+      do i = 1, 3
+         ddsdde(i, j) = lam
+      end do
+      ddsdde(j, j) = lam + 2.0_dp*mu
+   end do
+   ddsdde(4, 4) = mu
+
+   trial = stress + matmul(ddsdde, dstran)
+   dev = trial
+   dev(1:3) = trial(1:3) - sum(trial(1:3))/3.0_dp
+   s_norm = sqrt(dev(1)**2 + dev(2)**2 + dev(3)**2 + 2.0_dp*dev(4)**2)
+   q_tr = sqrt(1.5_dp)*s_norm
    ep_n = statev(1)
-   trial = stress + matmul(d, dstran)
    sy = sigma0 + h*ep_n
-   seq = mises(trial)
 
-   if (seq <= (1.0_dp + tol)*sy) then
-      ! elastic (or elastic unloading); thickness strain from sigma22 = 0
-      dsig = trial - stress
+   if (q_tr <= (1.0_dp + tol)*sy) then
       stress = trial
-      ddsdde = d
-      statev(2) = statev(2) - nu/e_mod*(dsig(1) + dsig(2))
-      statev(3) = stress(2)
-      statev(4) = e_ps
-      statev(5) = sy
-      statev(6) = h
-      sse = energy(stress)
-      return
+   else
+      dep = (q_tr - sy)/(3.0_dp*mu + h)
+      nrm = dev/s_norm
+      stress = trial - 2.0_dp*mu*dep*sqrt(1.5_dp)*nrm
+      statev(1) = ep_n + dep
+      theta = 1.0_dp - 3.0_dp*mu*dep/q_tr
+      theta_bar = 1.0_dp/(1.0_dp + h/(3.0_dp*mu)) - (1.0_dp - theta)
+      ! C = K 1x1 + 2 mu theta I_dev - 2 mu theta_bar N x N (I_dev's shear
+      ! entry is 1/2 with the engineering shear strain)
+      do j = 1, 4
+         do i = 1, 4
+            ddsdde(i, j) = -2.0_dp*mu*theta_bar*nrm(i)*nrm(j)
+            if (i <= 3 .and. j <= 3) ddsdde(i, j) = ddsdde(i, j) + k_bulk - 2.0_dp*mu*theta/3.0_dp
+         end do
+      end do
+      do j = 1, 3
+         ddsdde(j, j) = ddsdde(j, j) + 2.0_dp*mu*theta
+      end do
+      ddsdde(4, 4) = ddsdde(4, 4) + mu*theta
+      ! plastic work: int sigma_y d ebar_p over the increment (exact, linear)
+      spd = spd + dep*(sigma0 + h*(ep_n + 0.5_dp*dep))
    end if
-
-   ! return mapping: Newton on f(gamma), starting from gamma = 0
-   k_s = e_mod/(2.0_dp*(1.0_dp - nu))
-   k_t = 3.0_dp*e_mod/(2.0_dp*(1.0_dp + nu))
-   s_tr = trial(1) + trial(2)
-   t_tr = trial(1) - trial(2)
-   gam = 0.0_dp
-   do iter = 1, max_iter
-      s = s_tr/(1.0_dp + gam*k_s)
-      t = t_tr/(1.0_dp + gam*k_t)
-      seq = sqrt(s**2 + 3.0_dp*t**2)/2.0_dp
-      sy = sigma0 + h*(ep_n + gam*seq)
-      f = seq - sy
-      if (abs(f) <= tol*sy) exit
-      ds = -k_s*s/(1.0_dp + gam*k_s)
-      dt = -k_t*t/(1.0_dp + gam*k_t)
-      dseq = (s*ds + 3.0_dp*t*dt)/(4.0_dp*seq)
-      gam = gam - f/(dseq - h*(seq + gam*dseq))
-   end do
-   if (.not. (abs(f) <= tol*sy) .or. gam <= 0.0_dp) then
-      ! no convergence: ask for a smaller increment, change nothing
-      pnewdt = min(pnewdt, 0.5_dp)
-      ddsdde = d
-      return
-   end if
-
-   dep = gam*seq
-   dsig = [(s + t)/2.0_dp, (s - t)/2.0_dp] - stress
-   stress = stress + dsig
-   n = [stress(1) - 0.5_dp*stress(2), stress(2) - 0.5_dp*stress(1)]/seq
-
-   ! consistent tangent: Xi = (D^-1 + dp (P - n n^T)/sbar)^-1,
-   ! ddsdde = Xi - (Xi n)(Xi n)^T / (n^T Xi n + H)
-   a(1, 1) = 1.0_dp/e_mod + dep*(1.0_dp - n(1)**2)/seq
-   a(2, 2) = 1.0_dp/e_mod + dep*(1.0_dp - n(2)**2)/seq
-   a(1, 2) = -nu/e_mod + dep*(-0.5_dp - n(1)*n(2))/seq
-   a(2, 1) = a(1, 2)
-   xi = reshape([a(2, 2), -a(2, 1), -a(1, 2), a(1, 1)], [2, 2])/(a(1, 1)*a(2, 2) - a(1, 2)**2)
-   xn = matmul(xi, n)
-   do j = 1, 2
-      ddsdde(:, j) = xi(:, j) - xn*xn(j)/(dot_product(n, xn) + h)
-   end do
-
-   ! state: plastic strain, thickness strain (elastic part from sigma22 = 0,
-   ! plastic part from incompressibility), continuum tangent (A.1)
-   dn = matmul(d, n)
-   statev(1) = ep_n + dep
-   statev(2) = statev(2) - nu/e_mod*(dsig(1) + dsig(2)) - dep*(n(1) + n(2))
-   statev(3) = stress(2)
-   statev(4) = e_ps - dn(1)**2/(dot_product(n, dn) + h)
-   statev(5) = sigma0 + h*statev(1)
-   statev(6) = h
-   sse = energy(stress)
-   ! dissipation: int sigma_y d ebar_p over the increment
-   spd = spd + dep*(sigma0 + h*(ep_n + 0.5_dp*dep))
-
-contains
-
-   !> von Mises equivalent stress with sigma22 = 0.
-   pure function mises(sig) result(r)
-      real(dp), intent(in) :: sig(2)
-      real(dp) :: r
-      ! ((s11 + s33)^2 + 3 (s11 - s33)^2)/4 = s11^2 + s33^2 - s11 s33, a sum
-      ! of squares: never the root of a negative round-off
-      r = sqrt((sig(1) + sig(2))**2 + 3.0_dp*(sig(1) - sig(2))**2)/2.0_dp
-   end function mises
-
-   !> elastic energy density (s11^2 + s33^2 - 2 nu s11 s33)/(2E).
-   pure function energy(sig) result(w)
-      real(dp), intent(in) :: sig(2)
-      real(dp) :: w
-      w = (sig(1)**2 + sig(2)**2 - 2.0_dp*nu*sig(1)*sig(2))/(2.0_dp*e_mod)
-   end function energy
-
+   sse = (stress(1)**2 + stress(2)**2 + stress(3)**2 &
+          - 2.0_dp*nu*(stress(1)*stress(2) + stress(2)*stress(3) + stress(1)*stress(3)) &
+          + 2.0_dp*(1.0_dp + nu)*stress(4)**2)/(2.0_dp*e_mod)
 end subroutine umat

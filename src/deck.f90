@@ -12,9 +12,10 @@
 !>   &sheet     thickness, length, n_elements, mesh_beta, left_edge, normal_stress,
 !>              back_tension, strain_gradient, refine_from, refine_to, refine_element,
 !>              refine_neck
-!>   &material  model, umat_props, youngs_modulus, poissons_ratio, r_value, hardening,
+!>   &material  model, umat_props, umat_nstatv, umat_eqps_index, youngs_modulus,
+!>              poissons_ratio, r_value, r0, r90, drawing_direction, hardening,
 !>              swift_k, swift_eps0, swift_n, voce_sigma0, voce_q, voce_b,
-!>              curve_file, thickness_points
+!>              curve_file, kinematic_c, kinematic_gamma, thickness_points
 !>   &tools     bead, r1, r2, b1, b2, h1, h2, upper_profile, lower_profile,
 !>              penalty, friction, friction_eps, contact_smoothing
 !>   &loading   lock_depth, pull_distance, initial_increment,
@@ -49,7 +50,7 @@ module deck
    implicit none
    private
    public :: deck_type, group_names, resolve_defaults, validate_deck, max_umat_props, &
-             umat_props_given
+             umat_props_given, max_kinematic, unset, is_unset
 
    !> Marks a default that is resolved from the thickness after reading.
    real(dp), parameter :: unset = -huge(1.0_dp)
@@ -62,6 +63,9 @@ module deck
 
    !> Room for a user UMAT's constants (&material umat_props).
    integer, parameter :: max_umat_props = 64
+
+   !> Room for back stresses (&material kinematic_c, kinematic_gamma).
+   integer, parameter :: max_kinematic = 3
 
    !> The namelist groups, in the order they are read and echoed.
    character(len=8), parameter :: group_names(5) = &
@@ -99,8 +103,15 @@ module deck
       real(dp) :: youngs_modulus = 207000.0_dp        ! MPa
       real(dp) :: poissons_ratio = 0.3_dp
       real(dp) :: r_value = 1.0_dp                    ! normal anisotropy R
-      character(len=16) :: model = 'j2'               ! 'j2' (built in) | 'umat' (make UMAT=...)
+      character(len=16) :: model = 'j2'               ! 'j2' | 'combined' (built in) | 'umat' (make UMAT=...)
       real(dp) :: umat_props(max_umat_props) = unset  ! model = 'umat': the user's PROPS, in order
+      integer :: umat_nstatv = -1                     ! model = 'umat': the user's NSTATV (required)
+      integer :: umat_eqps_index = 0                  ! model = 'umat': statev index of ebar_p (0: none)
+      real(dp) :: r0 = unset                          ! model = 'combined': Lankford r along rolling (default r_value)
+      real(dp) :: r90 = unset                         ! ... across rolling (default r_value)
+      character(len=16) :: drawing_direction = 'rolling'  ! 'rolling' | 'transverse'
+      real(dp) :: kinematic_c(max_kinematic) = unset      ! model = 'combined': C_i of the back stresses, MPa
+      real(dp) :: kinematic_gamma(max_kinematic) = unset  ! ... gamma_i (default 0: Prager)
       character(len=16) :: hardening = 'swift'        ! 'swift' | 'voce' | 'table'
       real(dp) :: swift_k = 548.0_dp                  ! K (eps0 + ep)^n, MPa
       real(dp) :: swift_eps0 = 0.0085_dp
@@ -262,12 +273,6 @@ contains
                         [character(len=16) :: 'contact', 'none'])
       call check_real(errs, at(p, 'sheet', 'strain_gradient'), d%strain_gradient, lo=0.0_dp, hi=100.0_dp)
       call check_refined_zone(d, p, errs)
-      ! the contact section prescribes tau22 through the built-in law's
-      ! reduction to plane stress (docs/theory.md §12), which a user's UMAT
-      ! does not offer
-      if (d%normal_stress == 'contact' .and. d%model == 'umat') &
-         call fail(errs, at(p, 'sheet', 'normal_stress'), "'contact' needs the built-in "// &
-                   "material (&material model = 'j2'); set normal_stress = 'none' with a user's UMAT")
       if (d%left_edge == 'clamped' .and. ieee_is_finite(d%back_tension)) then
          if (abs(d%back_tension) > 0.0_dp) call warn(at(p, 'sheet', 'back_tension')// &
             ": ignored with left_edge = 'clamped' (it acts only on a 'free' edge)")
@@ -284,7 +289,7 @@ contains
       call check_real(errs, at(p, 'material', 'r_value'), d%r_value, lo=0.0_dp, hi=100.0_dp, &
                       lo_open=.true.)
       call check_choice(errs, at(p, 'material', 'model'), d%model, &
-                        [character(len=16) :: 'j2', 'umat'])
+                        [character(len=16) :: 'j2', 'combined', 'umat'])
       if (d%model == 'umat') then
          n = umat_props_given(d)
          if (n == 0) call fail(errs, at(p, 'material', 'umat_props'), &

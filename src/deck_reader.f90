@@ -22,7 +22,8 @@ module deck_reader
    use errors, only: error_list, add_error, warn
    use text, only: lower, itoa, max_input_bytes, max_line_length, first_long_line
    use os, only: read_file
-   use deck, only: deck_type, group_names, resolve_defaults, validate_deck, max_umat_props
+   use deck, only: deck_type, group_names, resolve_defaults, validate_deck, max_umat_props, &
+                   max_kinematic
    use deck_scan, only: group_text, scan_groups, split_assignments, check_repeated, clip, &
                         strip_separators, is_letter
    implicit none
@@ -93,6 +94,7 @@ contains
       d%tearing_criterion = lower(adjustl(d%tearing_criterion))
       d%hardening = lower(adjustl(d%hardening))
       d%model = lower(adjustl(d%model))
+      d%drawing_direction = lower(adjustl(d%drawing_direction))
       d%bead = lower(adjustl(d%bead))
       call resolve_defaults(d)
       call validate_deck(d, errs)
@@ -322,18 +324,28 @@ contains
       character(len=*), intent(inout) :: msg
       character(len=echo_len), intent(out) :: lines(echo_rows)
 
-      character(len=16) :: model, hardening
+      character(len=16) :: model, hardening, drawing_direction
       real(dp) :: umat_props(max_umat_props)
-      real(dp) :: youngs_modulus, poissons_ratio, r_value
+      integer :: umat_nstatv, umat_eqps_index
+      real(dp) :: youngs_modulus, poissons_ratio, r_value, r0, r90
       real(dp) :: swift_k, swift_eps0, swift_n, voce_sigma0, voce_q, voce_b
+      real(dp) :: kinematic_c(max_kinematic), kinematic_gamma(max_kinematic)
       character(len=512) :: curve_file
       integer :: thickness_points
-      namelist /material/ model, umat_props, youngs_modulus, poissons_ratio, r_value, hardening, &
+      namelist /material/ model, umat_props, umat_nstatv, umat_eqps_index, youngs_modulus, &
+         poissons_ratio, r_value, r0, r90, drawing_direction, hardening, &
          swift_k, swift_eps0, swift_n, voce_sigma0, voce_q, voce_b, curve_file, &
-         thickness_points
+         kinematic_c, kinematic_gamma, thickness_points
 
       model = d%model
       umat_props = d%umat_props
+      umat_nstatv = d%umat_nstatv
+      umat_eqps_index = d%umat_eqps_index
+      r0 = d%r0
+      r90 = d%r90
+      drawing_direction = d%drawing_direction
+      kinematic_c = d%kinematic_c
+      kinematic_gamma = d%kinematic_gamma
       youngs_modulus = d%youngs_modulus
       poissons_ratio = d%poissons_ratio
       r_value = d%r_value
@@ -356,6 +368,13 @@ contains
       if (ios /= 0 .or. action == act_write) return
       d%model = model
       d%umat_props = umat_props
+      d%umat_nstatv = umat_nstatv
+      d%umat_eqps_index = umat_eqps_index
+      d%r0 = r0
+      d%r90 = r90
+      d%drawing_direction = drawing_direction
+      d%kinematic_c = kinematic_c
+      d%kinematic_gamma = kinematic_gamma
       d%youngs_modulus = youngs_modulus
       d%poissons_ratio = poissons_ratio
       d%r_value = r_value

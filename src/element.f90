@@ -18,7 +18,7 @@ module element
    use hermite, only: n_gauss, gauss_xi, gauss_wt, hermite_shape
    use kinematics, only: strain_measures
    use section, only: section_response, ih_zbar
-   use material, only: material_type
+   use material_law, only: material_law_type
    implicit none
    private
    public :: element_internal, element_gradients, v_dofs, w_dofs
@@ -84,7 +84,7 @@ contains
    subroutine element_internal(le, ul, wz, mat, hn, h1, re, ke, gp, pnewdt, face_force, &
                                dface_force, gradient)
       real(dp), intent(in) :: le, ul(8), wz(:)
-      type(material_type), intent(in) :: mat
+      class(material_law_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :, :)
       real(dp), contiguous, intent(out) :: h1(:, :, :)
       real(dp), intent(out) :: re(8), ke(8, 8), gp(n_gp, n_gauss)

@@ -4,11 +4,11 @@ module model
    use kinds, only: dp
    use hermite, only: n_gauss, gauss_xi, simpson_rule
    use mesh, only: graded_nodes, zone_counts, zone_nodes, dofs_per_node
-   use section, only: n_hist, section_init
+   use section, only: hist_size, section_init
    use tools, only: tool_type
    use element, only: n_gp
    use contact, only: n_chist, ich_position
-   use material, only: material_type, max_load_strain
+   use material_law, only: material_law_type, max_load_strain
    implicit none
    private
    public :: model_type, state_type, load_type, model_init, state_init, load_init, &
@@ -19,7 +19,8 @@ module model
       real(dp) :: thickness = 0.0_dp, youngs = 0.0_dp
       real(dp), allocatable :: x(:)          ! reference node positions
       real(dp), allocatable :: z(:), wz(:)   ! Simpson stations and weights
-      type(material_type) :: material        ! the material (built-in law or a user's UMAT)
+      class(material_law_type), allocatable :: material ! the material law (module material_law)
+      integer :: n_hist = 0                  ! history columns of a section (section's hist_size)
       real(dp) :: max_load_strain = 0.0_dp   ! plane-strain maximum-load log strain of the material
       real(dp) :: max_load_stress = 0.0_dp   ! the axial Kirchhoff stress there, MPa
       ! tools and contact (bead /= 'none')
@@ -56,7 +57,7 @@ module model
 
    type :: state_type
       real(dp), allocatable :: u(:), u1(:)               ! converged, trial dofs
-      real(dp), allocatable :: hn(:, :, :, :), h1(:, :, :, :) ! (npt, n_hist, n_gauss, n_el)
+      real(dp), allocatable :: hn(:, :, :, :), h1(:, :, :, :) ! (npt, m%n_hist, n_gauss, n_el)
       real(dp), allocatable :: cn(:, :, :, :), c1(:, :, :, :) ! (n_chist, n_gauss, n_el, 2)
       real(dp), allocatable :: gp(:, :, :)               ! (n_gp, n_gauss, n_el): eps, rho, N, M (element's igp_*), trial
       real(dp), allocatable :: gpn(:, :, :)              ! the same, converged
@@ -82,7 +83,7 @@ contains
       type(model_type), intent(out) :: m
       integer, intent(in) :: n_el, npt
       real(dp), intent(in) :: length, beta, h
-      type(material_type), intent(in) :: mat
+      class(material_law_type), intent(in) :: mat
       real(dp), intent(in), optional :: zone(3)
       integer :: counts(3)
       m%n_el = n_el
@@ -102,7 +103,8 @@ contains
          call graded_nodes(n_el, 0.5_dp*length, beta, m%x)
       end if
       call simpson_rule(npt, h, m%z, m%wz)
-      m%material = mat
+      allocate (m%material, source=mat)
+      m%n_hist = hist_size(mat)
       m%max_load_strain = max_load_strain(mat, m%max_load_stress)
    end subroutine model_init
 
@@ -112,7 +114,7 @@ contains
       type(state_type), intent(out) :: s
       integer :: e, ig
       allocate (s%u(m%n_dof), s%u1(m%n_dof))
-      allocate (s%hn(m%npt, n_hist, n_gauss, m%n_el))
+      allocate (s%hn(m%npt, m%n_hist, n_gauss, m%n_el))
       allocate (s%cn(n_chist, n_gauss, m%n_el, 2))
       allocate (s%gp(n_gp, n_gauss, m%n_el), s%gpn(n_gp, n_gauss, m%n_el), s%indicator(n_gauss, m%n_el))
       s%u = 0.0_dp

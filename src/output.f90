@@ -18,7 +18,7 @@ module output
    use hermite, only: n_gauss, gauss_xi, hermite_shape
    use mesh, only: element_dofs
    use element, only: v_dofs, w_dofs, igp_strain, igp_curvature, igp_force, igp_moment
-   use section, only: ih_strain, ih_eps22, ih_eqps, ih_stress22
+   use section, only: ih_strain, col_eps22, col_eqps, ih_stress22
    use model, only: model_type, state_type, gauss_position
    use tools, only: tool_sample
    use os, only: make_directory, file_create, file_write, file_write_at, file_close, file_remove, &
@@ -366,8 +366,10 @@ contains
             eps = s%gpn(igp_strain, ig, e)
             top = s%hn(m%npt, ih_strain, ig, e)
             bot = s%hn(1, ih_strain, ig, e)
-            e22 = s%hn(mid, ih_eps22, ig, e)
-            epmax = maxval(s%hn(:, ih_eqps, ig, e))
+            e22 = s%hn(mid, col_eps22(m%material), ig, e)
+            ! a law without an equivalent plastic strain: -1 (the header says so)
+            epmax = -1.0_dp
+            if (col_eqps(m%material) > 0) epmax = maxval(s%hn(:, col_eqps(m%material), ig, e))
             write (rows(k + 1:k + row_len - 1), fmt_row) gauss_position(m, e, ig)/h, &
                (gauss_position(m, e, ig) + v)/h, &
                w/h, eps, log(1.0_dp + eps), top, bot, e22, epmax, s%gpn(igp_curvature, ig, e)*h, &

@@ -29,8 +29,7 @@ module remesh
    use mesh, only: dofs_per_node, element_dofs, node_dof, dof_v, dof_v_slope, dof_w, dof_w_slope
    use element, only: element_gradients, v_dofs, w_dofs
    use kinematics, only: strain_measures
-   use section, only: ih_strain, ih_zbar, ih_statev, ih_stress22
-   use material, only: material_state_mapped
+   use section, only: ih_strain, ih_zbar, ih_statev
    use contact, only: ich_position, ich_penetration, ich_hint, ich_active, ich_slip, ich_slip_max, &
                       ich_sense, ich_traction
    use tool_distance, only: tool_gap
@@ -212,7 +211,7 @@ contains
                xi = (real(j - 1, dp) + gauss_xi(ig))/real(pieces(e), dp)
                call station_weights(xi, i1, i2, w)
                hn(:, :, ig, f) = (1.0_dp - w)*s%hn(:, :, i1, e) + w*s%hn(:, :, i2, e)
-               call material_state_mapped(m%material, hn(:, ih_statev:ih_stress22 - 1, ig, f))
+               call m%material%state_mapped(hn(:, ih_statev:, ig, f))
                ! the fibres' converged strain: the new station's own stretch
                call element_gradients(gauss_xi(ig), lf, ulf, g, gm)
                call strain_measures(g, eps, rho, deps, drho, d2eps, d2rho)

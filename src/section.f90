@@ -5,53 +5,73 @@
 !> docs/theory.md §3).  Fibre stretch Lambda_k = 1 + eps + zbar_k rho; the material gets the
 !> log-strain increment ln(Lambda_k/Lambda_k,old) with the width strain held.
 !>
-!> The history of the section is hist(npt, n_hist), one row per material point
-!> (the block layout of umat_block: every station's value of one variable is
-!> contiguous):
+!> The history of the section is hist(npt, hist_size(law)), one row per
+!> material point (the block layout of the laws' updates: every station's
+!> value of one variable is contiguous):
 !>   hist(:, ih_strain)    converged fibre log strain ln Lambda_k (kept as
 !>                         a logarithm: one log per station and call)
 !>   hist(:, ih_zbar)      current distance from the mid-surface (lagged)
 !>   hist(:, ih_stress:+1) Kirchhoff stress (tau_11, tau_33)
-!>   hist(:, ih_sse), (:, ih_spd) elastic energy and plastic dissipation densities
-!>   hist(:, ih_statev:)   the material's state variables (layout in
-!>                         material_j2), among them
-!>   hist(:, ih_eqps)      equivalent plastic strain (statev(isv_eqps))
-!>   hist(:, ih_eps22)     thickness log strain (statev(isv_eps22))
-!>   hist(:, ih_tangent)   continuum tangent (statev(isv_tangent))
+!>   hist(:, ih_sse), (:, ih_spd) elastic energy and plastic work densities
 !>   hist(:, ih_stress22)  the prescribed thickness stress tau22 of the last
 !>                         update (0 with the paper's plane-stress section)
 !>   hist(:, ih_work22)    work density of tau22 on the thickness strain,
 !>                         int tau22 d eps22 (trapezoidal per increment): the
 !>                         energy the contact pressure puts into the material
 !>                         besides the shell's N d eps + M d rho
+!>   hist(:, ih_statev:)   the material law's n_state state variables (its
+!>                         own layout, module material_law), among them
+!>   hist(:, col_eqps(law))    equivalent plastic strain (0: the law has none)
+!>   hist(:, col_eps22(law))   thickness log strain
+!>   hist(:, col_tangent(law)) continuum tangent d tau11 / d eps11
 !>
 !> The thickness stress (docs/theory.md §12).  With the contact section a
 !> Gauss station in contact gets the normal tractions of the tools on its
 !> faces, face_stress = (tau22 on the bottom face z = -h/2, on the top face
 !> z = +h/2), compressive negative, and tau22 varies linearly in zbar between
-!> them; the material takes it as a prescribed stress.  A station whose face
+!> them; the law takes it as a prescribed stress.  A station whose face
 !> stresses are zero now and were zero at the last converged state runs the
 !> paper's plane-stress update unchanged.
 module section
    use kinds, only: dp
-   use material_j2, only: n_statev, isv_eqps, isv_eps22, isv_tangent, umat_block_to
-   use material, only: material_type, material_update, material_builtin
+   use material_law, only: material_law_type
    implicit none
    private
-   public :: n_hist, ih_strain, ih_zbar, ih_stress, ih_sse, ih_spd, ih_statev, ih_eqps, &
-             ih_eps22, ih_tangent, ih_stress22, ih_work22, section_init, section_response, section_localization, &
-             section_update_zbar
+   public :: ih_strain, ih_zbar, ih_stress, ih_sse, ih_spd, ih_stress22, ih_work22, ih_statev, &
+             hist_size, col_eqps, col_eps22, col_tangent, section_init, section_response, &
+             section_localization, section_update_zbar
 
+   !> the columns of the history that are the section's own (module header)
    integer, parameter :: ih_strain = 1, ih_zbar = 2, ih_stress = 3, ih_sse = 5, &
-                         ih_spd = 6, ih_statev = 7
-   integer, parameter :: ih_stress22 = ih_statev + n_statev, ih_work22 = ih_stress22 + 1
-   integer, parameter :: n_hist = ih_work22
-   !> columns of the state variables that the program reads
-   integer, parameter :: ih_eqps = ih_statev - 1 + isv_eqps, &
-                         ih_eps22 = ih_statev - 1 + isv_eps22, &
-                         ih_tangent = ih_statev - 1 + isv_tangent
+                         ih_spd = 6, ih_stress22 = 7, ih_work22 = 8, ih_statev = 9
 
 contains
+
+   !> HIST_SIZE: the number of history columns a section of this law needs.
+   pure integer function hist_size(law)
+      class(material_law_type), intent(in) :: law
+      hist_size = ih_statev - 1 + law%n_state
+   end function hist_size
+
+   !> COL_EQPS: the history column of the equivalent plastic strain (0: the
+   !> law has none).
+   pure integer function col_eqps(law)
+      class(material_law_type), intent(in) :: law
+      col_eqps = 0
+      if (law%isv_eqps > 0) col_eqps = ih_statev - 1 + law%isv_eqps
+   end function col_eqps
+
+   !> COL_EPS22: the history column of the thickness log strain.
+   pure integer function col_eps22(law)
+      class(material_law_type), intent(in) :: law
+      col_eps22 = ih_statev - 1 + law%isv_eps22
+   end function col_eps22
+
+   !> COL_TANGENT: the history column of the continuum tangent.
+   pure integer function col_tangent(law)
+      class(material_law_type), intent(in) :: law
+      col_tangent = ih_statev - 1 + law%isv_tangent
+   end function col_tangent
 
    !> SECTION_INIT: history of an undeformed, stress-free section.
    !>  z     [in]  reference station positions
@@ -81,19 +101,20 @@ contains
    subroutine section_response(eps, rho, wz, mat, hn, h1, force, moment, c, pnewdt, &
                                face_stress, cs)
       real(dp), intent(in) :: eps, rho, wz(:)
-      type(material_type), intent(in) :: mat
+      class(material_law_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :)
       real(dp), contiguous, intent(out) :: h1(:, :)
       real(dp), intent(out) :: force, moment, c(2, 2)
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in) :: face_stress(2)
       real(dp), intent(out) :: cs(2, 2)
-      integer :: k, npt
+      integer :: k, npt, last, ie22
       real(dp) :: lam(size(wz)), log_lam(size(wz)), dstran(size(wz), 2)
       real(dp) :: ddsdde(size(wz), 2, 2), s22(size(wz)), zeta(size(wz)), dsig(size(wz))
       real(dp) :: zb, tau, wl, wl2
       logical :: with_s22
       npt = size(wz)
+      last = ih_statev - 1 + mat%n_state
       force = 0.0_dp
       moment = 0.0_dp
       c = 0.0_dp
@@ -113,14 +134,14 @@ contains
          dstran(k, 2) = 0.0_dp
       end do
       with_s22 = any(abs(face_stress) > 0.0_dp) .or. any(abs(hn(:, ih_stress22)) > 0.0_dp)
-      if (.not. with_s22 .and. mat%kind == material_builtin) then
-         ! the built-in law reads the converged history where it is and
-         ! writes every column of the trial one once (umat_block_to): no copy
-         ! of hn into h1 first
-         call umat_block_to(npt, hn(:, ih_stress:ih_stress + 1), hn(:, ih_statev:ih_statev + n_statev - 1), &
+      if (.not. with_s22) then
+         ! the law reads the converged history where it is and writes the
+         ! trial one (update_to; law_j2 writes every column once, with no
+         ! copy of hn into h1 first)
+         call mat%update_to(npt, hn(:, ih_stress:ih_stress + 1), hn(:, ih_statev:last), &
                             hn(:, ih_sse), hn(:, ih_spd), h1(:, ih_stress:ih_stress + 1), &
-                            h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
-                            h1(:, ih_spd), dstran, mat%props, size(mat%props), n_statev, pnewdt)
+                            h1(:, ih_statev:last), h1(:, ih_sse), h1(:, ih_spd), ddsdde, &
+                            hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt)
          if (pnewdt < 1.0_dp) then
             h1 = hn
             return
@@ -130,34 +151,28 @@ contains
             h1(k, ih_stress22) = hn(k, ih_stress22)
             h1(k, ih_work22) = hn(k, ih_work22)
          end do
-      else if (with_s22) then
+      else
          h1 = hn
          ! tau22 linear in zbar between the faces (docs/theory.md §12)
          do k = 1, npt
             zeta(k) = (hn(k, ih_zbar) - hn(1, ih_zbar))/(hn(npt, ih_zbar) - hn(1, ih_zbar))
             s22(k) = (1.0_dp - zeta(k))*face_stress(1) + zeta(k)*face_stress(2)
          end do
-         call material_update(mat, npt, h1(:, ih_stress:ih_stress + 1), &
-                              h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
-                              h1(:, ih_spd), hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt, &
-                              hn(:, ih_stress22), s22, dsig)
+         call mat%update(npt, h1(:, ih_stress:ih_stress + 1), h1(:, ih_statev:last), ddsdde, &
+                         h1(:, ih_sse), h1(:, ih_spd), hn(:, ih_strain), dstran, hn(:, ih_zbar), &
+                         pnewdt, hn(:, ih_stress22), s22, dsig)
          if (pnewdt < 1.0_dp) return
+         ie22 = col_eps22(mat)
          do k = 1, npt
             h1(k, ih_stress22) = s22(k)
             h1(k, ih_work22) = hn(k, ih_work22) + 0.5_dp*(hn(k, ih_stress22) + s22(k)) &
-                               *(h1(k, ih_eps22) - hn(k, ih_eps22))
+                               *(h1(k, ie22) - hn(k, ie22))
             wl = wz(k)*dsig(k)/lam(k)
             cs(1, 1) = cs(1, 1) + wl*(1.0_dp - zeta(k))
             cs(1, 2) = cs(1, 2) + wl*zeta(k)
             cs(2, 1) = cs(2, 1) + wl*(1.0_dp - zeta(k))*hn(k, ih_zbar)
             cs(2, 2) = cs(2, 2) + wl*zeta(k)*hn(k, ih_zbar)
          end do
-      else
-         h1 = hn
-         call material_update(mat, npt, h1(:, ih_stress:ih_stress + 1), &
-                              h1(:, ih_statev:ih_statev + n_statev - 1), ddsdde, h1(:, ih_sse), &
-                              h1(:, ih_spd), hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt)
-         if (pnewdt < 1.0_dp) return
       end if
       do k = 1, npt
          h1(k, ih_strain) = log_lam(k)
@@ -186,20 +201,26 @@ contains
    !> would jump twelvefold there).
    !>  wz     [in] Simpson weights
    !>  hist   [in] converged history of the stations
-   !>  h, e   [in] thickness and Young's modulus (scales)
-   pure function section_localization(wz, hist, h, e) result(indicator)
-      real(dp), intent(in) :: wz(:), hist(:, :), h, e
+   !>  h      [in] thickness (a scale)
+   !>  mat    [in] the material law (E the scale; the tangent's column)
+   pure function section_localization(wz, hist, h, mat) result(indicator)
+      real(dp), intent(in) :: wz(:), hist(:, :), h
+      class(material_law_type), intent(in) :: mat
       real(dp) :: indicator
+      real(dp) :: e
+      integer :: it
       real(dp) :: c11, c12, c22, zb, wl2, t, tr, dt, rt
       real(dp) :: wl(size(wz))
       integer :: k, npt
       npt = size(wz)
+      e = mat%youngs
+      it = col_tangent(mat)
       t = hist(npt, ih_zbar) - hist(1, ih_zbar)
       rt = sqrt(12.0_dp)/t
       ! w (D - tau)/Lambda^2 with 1/Lambda^2 = exp(-2 ln Lambda): no
       ! division, and a loop without a sum, which vectorizes (libmvec's exp)
       do k = 1, npt
-         wl(k) = wz(k)*(hist(k, ih_tangent) - hist(k, ih_stress))*exp(-2.0_dp*hist(k, ih_strain))
+         wl(k) = wz(k)*(hist(k, it) - hist(k, ih_stress))*exp(-2.0_dp*hist(k, ih_strain))
       end do
       c11 = 0.0_dp; c12 = 0.0_dp; c22 = 0.0_dp
       do k = 1, npt
@@ -220,17 +241,20 @@ contains
    !> station outward (docs/theory.md §3).  Called once per converged increment, so zbar
    !> is lagged one increment.
    !>  z     [in]  reference station positions (odd count, mid station at 0)
+   !>  mat   [in]  the material law (the thickness strain's column)
    !>  hist  [in,out] history; column ih_zbar is rewritten
-   pure subroutine section_update_zbar(z, hist)
+   pure subroutine section_update_zbar(z, mat, hist)
       real(dp), intent(in) :: z(:)
+      class(material_law_type), intent(in) :: mat
       real(dp), intent(inout) :: hist(:, :)
-      integer :: k, mid
+      integer :: k, mid, ie22
       real(dp) :: g(size(z))
       mid = (size(z) + 1)/2
+      ie22 = col_eps22(mat)
       ! one exp per station (each enters two trapezoids); a loop of its own
       ! so that it vectorizes (libmvec)
       do k = 1, size(z)
-         g(k) = exp(hist(k, ih_eps22))
+         g(k) = exp(hist(k, ie22))
       end do
       hist(mid, ih_zbar) = 0.0_dp
       do k = mid + 1, size(z)

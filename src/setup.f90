@@ -14,15 +14,18 @@ module setup
    use controls, only: controls_type
    use model, only: model_type, model_init
    use hardening, only: read_curve_file, law_swift, law_voce, law_table, ip_law, ip_table_m
-   use material_j2, only: ip_youngs, ip_poisson, ip_r_value, check_props
-   use material, only: material_type, builtin_material, user_material, user_umat_linked
+   use material_j2, only: ip_youngs, ip_poisson, ip_r_value
+   use material_law, only: material_law_type
+   use law_j2, only: j2_law_of_deck
+   use law_combined, only: combined_law_of_deck
+   use law_umat, only: umat_law_of_deck
    use tools, only: tool_type, tool_sample, seg_arc
    use tool_distance, only: tool_gap
    use bead_builder, only: build_rectangular_bead
    use profile_io, only: read_profile
    use remesh, only: exit_element_over_h, exit_zone_before, exit_zone_after
    use os, only: memory_room
-   use section, only: n_hist
+   use section, only: hist_size
    use contact, only: n_chist
    use element, only: n_gp
    use hermite, only: n_gauss
@@ -49,7 +52,7 @@ contains
       type(controls_type), intent(out) :: ctl
       type(error_list), intent(inout) :: errs
 
-      type(material_type) :: mat
+      class(material_law_type), allocatable :: mat
       type(tool_type) :: upper, lower_tool
       logical :: deck_ok
       real(dp) :: h
@@ -104,39 +107,36 @@ contains
       n_split = 0
       if (m%exit_element > 0.0_dp) n_split = ceiling(min(d%length, (exit_zone_before + exit_zone_after)*h + &
                                                          d%pull_distance)/m%exit_element)
-      call check_memory(d, m%n_el + n_split, d%thickness_points, errs)
+      call check_memory(d, m%n_el + n_split, d%thickness_points, m%n_hist, errs)
    end subroutine setup_run
 
-   !> MATERIAL_OF_DECK: the material: the built-in J2/Hill law with its
-   !> constants (checked by material_j2's check_props), or a user's UMAT
-   !> with the deck's umat_props when the program was built with one.
+   !> MATERIAL_OF_DECK: the material law a deck names (&material model),
+   !> built by its module from the deck, which checks the law's own
+   !> variables.  This is where a law is registered: one line per law.
    !>  d        [in]     the deck
    !>  deck_ok  [in]     .false. when the deck has errors (the constants are
    !>                    then not checked again)
-   !>  mat      [out]    the material
+   !>  mat      [out]    the law
    !>  errs     [in,out] problems are appended
    subroutine material_of_deck(d, deck_ok, mat, errs)
       type(deck_type), intent(in) :: d
       logical, intent(in) :: deck_ok
-      type(material_type), intent(out) :: mat
+      class(material_law_type), allocatable, intent(out) :: mat
       type(error_list), intent(inout) :: errs
       real(dp), allocatable :: props(:)
-      character(len=:), allocatable :: msg
-      if (d%model == 'umat') then
-         if (.not. user_umat_linked()) then
-            call add_error(errs, "deck '"//trim(d%deck_file)//"', group &material, variable model: "// &
-                           "'umat' needs a user UMAT built into the program: make UMAT=path/to/umat.f90")
-         end if
-         mat = user_material(d%umat_props(1:umat_props_given(d)), d%youngs_modulus)
-         return
-      end if
-      call material_constants(d, props, errs)
-      if (deck_ok .and. errs%count == 0) then
-         msg = check_props(props, size(props))
-         if (len_trim(msg) > 0) call add_error(errs, "deck '"//trim(d%deck_file)// &
-                                               "', group &material: "//trim(msg))
-      end if
-      mat = builtin_material(props)
+      logical :: ok
+      if (d%model /= 'umat') call material_constants(d, props, errs)
+      ! the constants are checked where the deck and the curve file are good
+      ok = deck_ok .and. errs%count == 0
+      select case (trim(d%model))
+      case ('combined')
+         allocate (mat, source=combined_law_of_deck(d, props, ok, errs))
+      case ('umat')
+         allocate (mat, source=umat_law_of_deck(d, errs))
+      case default
+         ! 'j2', and an unknown name (the deck's error already)
+         allocate (mat, source=j2_law_of_deck(d, props, ok, errs))
+      end select
    end subroutine material_of_deck
 
    !> MATERIAL_CONSTANTS: the UMAT props vector of a deck, the tabulated
@@ -360,8 +360,9 @@ contains
    !> beyond) and failed in an allocation under 470000 (453 MiB).
    !>  n_el  [in] elements of the run's mesh
    !>  npt   [in] Simpson stations through the thickness
-   pure function run_memory(n_el, npt) result(bytes)
-      integer, intent(in) :: n_el, npt
+   !>  n_hist [in] history columns of a section (the law's: section's hist_size)
+   pure function run_memory(n_el, npt, n_hist) result(bytes)
+      integer, intent(in) :: n_el, npt, n_hist
       real(dp) :: bytes, per_element, per_dof, n_dof
       n_dof = real(dofs_per_node, dp)*real(n_el + 1, dp)
       ! real64 words per element: state, then one assembly's work arrays
@@ -384,14 +385,15 @@ contains
    !>  n_el   [in]     elements of the run's mesh (more than n_elements
    !>                  with a refined zone)
    !>  npt    [in]     Simpson stations through the thickness
+   !>  n_hist [in]     history columns of a section
    !>  errs   [in,out] one error when the run cannot fit
-   subroutine check_memory(d, n_el, npt, errs)
+   subroutine check_memory(d, n_el, npt, n_hist, errs)
       type(deck_type), intent(in) :: d
-      integer, intent(in) :: n_el, npt
+      integer, intent(in) :: n_el, npt, n_hist
       type(error_list), intent(inout) :: errs
       real(dp) :: need, room
       character(len=:), allocatable :: what, mesh
-      need = run_memory(n_el, npt)
+      need = run_memory(n_el, npt, n_hist)
       call memory_room(room, what)
       if (need <= room) return
       mesh = itoa(n_el)//' elements'

@@ -15,10 +15,9 @@ module solver
    use mesh, only: element_dofs, half_band, node_dof, dof_v_slope, dof_w_slope, is_slope_dof
    use band, only: band_matrix, band_init, band_zero, band_add, band_fix_dof, band_solve
    use element, only: element_internal, v_dofs, w_dofs
-   use section, only: section_localization, section_update_zbar, ih_eqps
+   use section, only: section_localization, section_update_zbar, col_eqps, ih_spd
    use model, only: model_type, state_type, load_type
    use contact, only: contact_station, ich_active
-   use material, only: material_builtin
    implicit none
    private
    public :: newton_result, assemble, newton_solve, commit_state, max_newton_history, &
@@ -120,7 +119,7 @@ contains
       ! the dead loads cancel internal forces at their dofs: a rounding of
       ! the difference (the end moment's part is added with it, below)
       if (present(r_floor)) r_floor = epsilon(1.0_dp)*abs(ld%f_ext)
-      threads = m%material%kind == material_builtin
+      threads = m%material%thread_safe
       ! each element writes only its own columns of h1, c1, gp and the
       ! work arrays.  A static schedule gives each thread the same block of
       ! elements in every assembly and in the commit, so that its part of
@@ -362,10 +361,15 @@ contains
       integer :: it, i, info, backtrack, k
       real(dp) :: g0, g1, alpha
       integer :: n_contact_prev
+      ! the column that grows where a station yields: the equivalent plastic
+      ! strain, or the plastic work for a law without one
+      integer :: i_plastic
       logical :: counting
       logical, allocatable :: plastic(:, :, :), was_plastic(:, :, :)
       counting = .false.
       if (present(count_states)) counting = count_states
+      i_plastic = col_eqps(m%material)
+      if (i_plastic == 0) i_plastic = ih_spd
       allocate (du(size(r)), r_floor(size(r)))
       ! the state counts only with count_states (empty otherwise)
       k = merge(m%npt, 0, counting)
@@ -415,7 +419,7 @@ contains
          floor_norm = scaled_norm(m, ld, r_floor, f_scale)
          res%round_off(it) = floor_norm
          if (counting) then
-            plastic(:, :, :) = s%h1(:, ih_eqps, :, :) > s%hn(:, ih_eqps, :, :)
+            plastic(:, :, :) = s%h1(:, i_plastic, :, :) > s%hn(:, i_plastic, :, :)
             res%plastic(it) = count(plastic)
             if (it > 0) res%switched(it) = count(plastic .neqv. was_plastic)
             was_plastic(:, :, :) = plastic
@@ -517,8 +521,8 @@ contains
       do e = 1, m%n_el
          do ig = 1, n_gauss
             s%indicator(ig, e) = section_localization(m%wz, s%h1(:, :, ig, e), &
-                                                      m%thickness, m%youngs)
-            call section_update_zbar(m%z, s%h1(:, :, ig, e))
+                                                      m%thickness, m%material)
+            call section_update_zbar(m%z, m%material, s%h1(:, :, ig, e))
          end do
       end do
       !$omp end parallel do
