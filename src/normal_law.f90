@@ -36,8 +36,14 @@ module normal_law
    !> the state variables appended to the law's own (module header)
    integer, parameter :: n_appended = 4
    !> relative tolerance on the prescribed tau22 (of the largest stress
-   !> component, at least 1e-6 E): the law's own local tolerance is 1e-12
-   real(dp), parameter :: tol_s22 = 1.0e-11_dp
+   !> component, at least 1e-6 E).  Measured on bead A with an
+   !> Armstrong-Frederick back stress (gamma = 200): at 1e-11 the global
+   !> Newton converged linearly (rate 0.4) and the lock took 974 increments
+   !> in 30 s without finishing; at 1e-14 quadratically, 19 increments
+   real(dp), parameter :: tol_s22 = 1.0e-14_dp
+   !> a residual that stalls above tol_s22 (round-off of the law's stress)
+   !> is accepted after max_drive_iter iterations if below this
+   real(dp), parameter :: tol_s22_floor = 1.0e-11_dp
    !> Newton iterations on the thickness strain before the increment is cut
    integer, parameter :: max_drive_iter = 25
 
@@ -154,7 +160,7 @@ contains
       real(dp), intent(in) :: stran11, dstran(2), s22_end, zbar
       integer, intent(in) :: kspt
       real(dp) :: s(3), sv(law%n_inner), dd(3, 3), cont(3, 3), e, w, x, r, scale, ratio, c22, &
-                  lam2mu
+                  lam2mu, tol
       integer :: it, i_ratio, i_c22
       i_ratio = law%n_inner + 3
       i_c22 = law%n_inner + 4
@@ -179,7 +185,9 @@ contains
          if (.not. (ieee_is_finite(s(2)) .and. abs(dd(2, 2)) > 0.0_dp)) exit
          r = s(2) - s22_end
          scale = max(abs(s(1)), abs(s(3)), abs(s22_end), 1.0e-6_dp*law%youngs)
-         if (abs(r) <= tol_s22*scale) then
+         tol = tol_s22
+         if (it == max_drive_iter) tol = tol_s22_floor
+         if (abs(r) <= tol*scale) then
             ddsdde(1, 1) = dd(1, 1) - dd(1, 2)*dd(2, 1)/dd(2, 2)
             ddsdde(1, 2) = dd(1, 3) - dd(1, 2)*dd(2, 3)/dd(2, 2)
             ddsdde(2, 1) = dd(3, 1) - dd(3, 2)*dd(2, 1)/dd(2, 2)
