@@ -25,8 +25,9 @@
 #       length (N/mm) against the penetration = lock_depth (mm): bending
 #       and friction, the runs of the sweep: for codes that take the whole
 #       force (Radioss /INTER/TYPE8 Ft). The steady restraining force
-#       (steady_force_over_Eh) where the run found one, else the peak force
-#       (peak_force_over_Eh); the header says which
+#       (steady_force_over_Eh) where the run and its companion found one,
+#       else the peak force (peak_force_over_Eh) of both; the header says
+#       which
 #   restraining_bending.txt  the BENDING part: the same from the
 #       frictionless companions, for codes that add friction themselves
 #       (LS-DYNA *CONTACT_DRAWBEAD LCIDRF)

@@ -193,19 +193,19 @@ def window_mean(rows, col, lo, hi):
     return area / width if width > 0 else sum(p[1] for p in pts) / len(pts)
 
 
-def bead_point(summ, rows):
+def bead_point(summ, rows, peak=False):
     """(restraining force, lift force) in N/mm and 'steady' or 'peak', from a
     run's summary values and pull.dat rows; None if there is no pulling.
     The steady force where the run found one (the lift averaged over the
-    two thicknesses of pull before it was reached), else the peak force
-    (and the lift of that row)."""
+    two thicknesses of pull before it was reached), else (or with peak)
+    the peak force (and the lift of that row)."""
     eh = [r[2] / r[1] for r in rows if r[1] != 0.0]
     if not eh:
         return None
     eh = sorted(eh)[len(eh) // 2]              # E h, N/mm
     steady = summ.get('steady_force_over_Eh', 'none')
     at = summ.get('steady_reached_at_delta_over_h', 'none')
-    if steady != 'none' and at != 'none':
+    if steady != 'none' and at != 'none' and not peak:
         at = float(at)
         lift = window_mean(rows, 4, at - 2.0, at)
         if lift is not None:
@@ -214,28 +214,29 @@ def bead_point(summ, rows):
     return peak[1] * eh, peak[4], 'peak'
 
 
-def run_point(sweepdir, rel, statuses):
+def run_point(sweepdir, rel, statuses, peak=False):
     """(status, point or None) of the run in SWEEPDIR/rel (a case's run or
-    its companion's); statuses: case -> status of that folder's runs."""
+    its companion's); statuses: case -> status of that folder's runs;
+    peak: the peak force even where the run found a steady one."""
     rundir = os.path.join(sweepdir, rel)
     status = statuses.get(os.path.basename(rel), 'not_run')
     summ = st.read_summary(os.path.join(rundir, 'summary.txt'))
     if summ is None or status not in ('completed', 'localized'):
         return status, None
-    return status, bead_point(summ, read_pull(rundir))
+    return status, bead_point(summ, read_pull(rundir), peak)
 
 
 # ---------------------------------------------------------------------------
 # Cards
 # ---------------------------------------------------------------------------
 def field(x, width):
-    """x right-justified in width characters, a blank in front: the
-    shortest text that reads back as x where it fits, else as many
-    significant digits as fit; always readable as a real (a '.' or an
-    exponent)."""
-    for s in [repr(float(x))] + ['%.*g' % (digits, x) for digits in range(16, 0, -1)]:
+    """x right-justified in width characters, a blank in front, with at
+    most 8 significant digits (far below the model's own error; enough to
+    read the numbers back to 1e-7) and as many as fit; always readable as
+    a real (a '.' or an exponent)."""
+    for s in ['%.*g' % (digits, x) for digits in range(8, 0, -1)]:
         if '.' not in s and 'e' not in s and 'n' not in s:
-            s += '.'
+            s += '.0' if len(s) + 2 < width else '.'
         if len(s) < width:
             return s.rjust(width)
     die('cannot write %r in %d columns' % (x, width))
@@ -472,6 +473,13 @@ def cmd_curves(args):
                                % (what, rel, fstatus if fstatus not in ('completed', 'localized')
                                   else 'no pulling results'))
                 continue
+            # the same measure for a run and its companion: the peak for
+            # both unless both found a steady force
+            if point[2] != fpoint[2]:
+                if point[2] == 'steady':
+                    status, point = run_point(sweepdir, os.path.join('runs', c[0]), statuses, True)
+                else:
+                    fstatus, fpoint = run_point(sweepdir, rel, fst, True)
             mu = st.deck_value(read_text(decks[c[0]]), 'friction')
             mus.add('0' if mu is None else mu)
             if point[2] == 'peak':
@@ -512,8 +520,9 @@ def cmd_curves(args):
         def source(peaks):
             if not peaks:
                 return 'steady_force_over_Eh (summary.txt) times E h at every depth'
-            return ('steady_force_over_Eh where present, else peak_force_over_Eh: peak used at '
-                    'lock_depth = %s mm (no steady state)' % ', '.join(peaks))
+            return ('steady_force_over_Eh where both the run and its frictionless companion found '
+                    'one, else peak_force_over_Eh (for both): peak used at lock_depth = %s mm'
+                    % ', '.join(peaks))
         sfx = ('_' + tag) if tag else ''
         mu_text = ', '.join(sorted(mus))
         files = {
