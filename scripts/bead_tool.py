@@ -93,6 +93,8 @@ def cmd_companions(args):
         die('usage: bead_tool.py companions SWEEPDIR')
     sweepdir = args[0]
     names, cases = st.read_cases(sweepdir)
+    if 'lock_depth' not in names:
+        die('%s is not a sweep over lock_depth (swept: %s)' % (sweepdir, ', '.join(names) or 'nothing'))
     decks = read_decks(sweepdir)
     fdir = os.path.join(sweepdir, 'frictionless')
     os.makedirs(os.path.join(fdir, 'decks'), exist_ok=True)
@@ -285,7 +287,7 @@ def lsdyna_cards(w):
     blank = '&BLANKID' if w['blank'] is None else w['blank']
     out = ['*KEYWORD',
            '$ Equivalent drawbead from the drawbead sweep %s%s' % (w['sweep'], w['desc']),
-           '$ written by scripts/bead_curves.sh; layout of LS-DYNA R7.1 and later (see',
+           '$ written by scripts/bead_curves.sh; the LS-DYNA 971 keyword layout (see',
            '$ docs/user-guide.md, "Equivalent beads for LS-DYNA and Radioss")',
            '$ units: mm and N: forces per unit bead length (N/mm) against the',
            '$ penetration (mm); use it in a model in mm and N (tonne and s, or ms)',

@@ -33,7 +33,8 @@
 #   e) --depth 3.6 --bead-nodes 7 --blank 3 --lcid 10: the ids in the
 #      cards (no *PARAMETER), DBDTH = DEPTH = 3.6, the forces and FS
 #      interpolated between the swept depths; --depth 9 (outside) is a
-#      usage error (exit 2)
+#      usage error (exit 2), and so is a sweep not over lock_depth (before
+#      any companion runs)
 # Prints one line per check; exit status 0 if all pass, 1 if any fails,
 # 2 if the test cannot run.
 set -u
@@ -346,6 +347,11 @@ scripts/bead_curves.sh --bin "$prog" -o "$tmp/out9" --depth 9 "$sweep" >/dev/nul
 rc=$?
 check "--depth 9 (outside 0 to 4.7 mm) is a usage error (exit 2, got $rc)" test "$rc" -eq 2
 check "... saying so" grep -q 'outside the depths of the sweep' "$tmp/e2.err"
+scripts/sweep.sh --bin "$prog" -o "$tmp/nolock" "$tmp/beadA_free.nml" friction=0.1 >/dev/null 2>&1
+scripts/bead_curves.sh --bin "$prog" "$tmp/nolock" >/dev/null 2>"$tmp/e3.err"
+rc=$?
+check "a sweep not over lock_depth is a usage error (exit 2, got $rc) ..." test "$rc" -eq 2
+check "... found before any companion runs" test ! -e "$tmp/nolock/frictionless/runs"
 
 if ((failures > 0)); then
     echo "--- stderr:"
