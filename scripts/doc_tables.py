@@ -457,6 +457,39 @@ def gen_neck_cost(ctx):
     return lambda raw: out
 
 
+def gen_bead_cards(ctx):
+    """docs/user-guide.md: the worked example of an equivalent bead: a
+    lock_depth sweep of fig9c, scripts/bead_curves.sh on it, its
+    bead_table.txt as a table and the cards of drawbead.k and
+    drawbead_radioss.rad (without their comment lines)."""
+    sweep = os.path.join(ctx.tmp, "sweep_a")
+    script_output(ctx, ["scripts/sweep.sh", "--bin", ctx.program, "-j", str(ctx.workers), "-o", sweep,
+                        "input/fig9c_beadA_steel_free.nml", "lock_depth=1,2,3,4,4.6"])
+    script_output(ctx, ["scripts/bead_curves.sh", "--bin", ctx.program, "-j", str(ctx.workers), sweep])
+    out = os.path.join(sweep, "bead_curves")
+    with open(os.path.join(out, "bead_table.txt"), encoding="utf-8") as f:
+        table = [[float(x) for x in ln.split()] for ln in f if ln.strip() and not ln.startswith("#")]
+    rows = [[Num(r[0], ".1f"), Num(r[1], ".2f"), Num(r[2], ".2f"), Num(r[3], ".2f"), Num(r[4], ".2f"),
+             Num(r[5], ".3f")] for r in table]
+    header = ["penetration (mm)", "total (N/mm)", "bending (N/mm)", "friction part (N/mm)",
+              "lift (N/mm)", "effective friction coefficient"]
+
+    def cards(name, first):
+        with open(os.path.join(out, name), encoding="utf-8") as f:
+            lines = [ln.rstrip("\n") for ln in f]
+        start = next(i for i, ln in enumerate(lines) if ln.startswith(first))
+        return lines[start:]
+    k = cards("drawbead.k", "*PARAMETER")
+    rad = cards("drawbead_radioss.rad", "/INTER/TYPE8")
+
+    def text(raw):
+        return "\n".join([markdown_table(header, ["---:"] * 6, rows, raw), "",
+                          "`drawbead.k` from `*PARAMETER` on (above it, the comments say where the numbers come from and what to fill in):", "",
+                          "```"] + k + ["```", "", "`drawbead_radioss.rad` from `/INTER/TYPE8` on:", "",
+                                        "```"] + rad + ["```"])
+    return text
+
+
 GENERATORS = {
     "readme_example": ("README.md", gen_readme_example, "bin/drawbead on input/fig5a_beadA_steel.nml"),
     "paper_table": ("docs/validation.md", gen_paper_table, "every input/fig*.nml and strip_tension.nml"),
@@ -484,6 +517,8 @@ GENERATORS = {
     "neck_cost": ("docs/performance.md", gen_neck_cost,
                   "scripts/bench.sh on the clamped cc_ steel decks stopped at tearing: uniform, default path, refine_neck"
                   " (not checkable)"),
+    "bead_cards": ("docs/user-guide.md", gen_bead_cards,
+                   "scripts/sweep.sh over lock_depth on fig9c and scripts/bead_curves.sh on it"),
     "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5: 1 and 2 threads, scaling (not checkable)"),
 }
 UNCHECKABLE = {"bench", "contact_cost", "neck_cost"}

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""sweep_tool.py -- the python half of scripts/sweep.sh and scripts/bead_curves.sh.
+"""sweep_tool.py -- the python half of scripts/sweep.sh (scripts/bead_tool.py,
+the half of scripts/bead_curves.sh, uses its deck and result readers).
 
 Subcommands:
 
@@ -20,14 +21,6 @@ Subcommands:
       keeps its row, with its status (bad_input, no_convergence, ...) and
       the program's first error message in a '#' line below the table.
       Exit status 1 if any case failed or has not run yet.
-
-  curves SWEEPDIR OUTDIR [--no-origin]
-      Equivalent-bead load curves from a sweep over lock_depth: for each
-      combination of the other swept variables, two-column tables
-      (restraining force and lift force per unit bead length, N/mm, against
-      the lock depth, mm; the closing force F(H) of the deepest run) and an
-      LS-DYNA keyword file with the first two as *DEFINE_CURVE_TITLE. See
-      scripts/bead_curves.sh.
 
 Overriding a variable: the group holding it in the base deck is used (its
 value replaced in place, comments kept); a variable the base deck does not
@@ -396,216 +389,6 @@ def cmd_collect(args):
     return 1 if failed or not_run else 0
 
 
-# ---------------------------------------------------------------------------
-# Equivalent-bead curves
-# ---------------------------------------------------------------------------
-def read_table(path, columns):
-    """The given 0-based columns of a drawbead .dat file as tuples of floats,
-    one per data row ('#' lines and blank lines skipped); [] if the file is
-    missing or a row is short or not numeric."""
-    rows = []
-    try:
-        with open(path) as f:
-            for line in f:
-                if line.startswith('#') or not line.strip():
-                    continue
-                c = line.split()
-                rows.append(tuple(float(c[i]) for i in columns))
-    except (OSError, ValueError, IndexError):
-        return []
-    return rows
-
-
-def read_pull(rundir):
-    """Rows (delta/h, N/(E h), N [N/mm], lift/(E h), lift [N/mm]) of pull.dat."""
-    return read_table(os.path.join(rundir, 'pull.dat'), (0, 1, 2, 6, 7))
-
-
-def read_closing(rundir):
-    """(H [mm], F [N/mm]) of lock.dat, H from H/h and the thickness echoed
-    at the top of run.log; [] if either is missing."""
-    h = None
-    try:
-        with open(os.path.join(rundir, 'run.log'), errors='replace') as f:
-            for line in f:
-                m = re.match(r'\s*THICKNESS\s*=\s*([-+0-9.EeDd]+)', line)
-                if m:
-                    h = float(m.group(1).replace('D', 'E').replace('d', 'e'))
-                    break
-    except (OSError, ValueError):
-        return []
-    if h is None:
-        return []
-    return [(hh * h, f) for hh, f in read_table(os.path.join(rundir, 'lock.dat'), (0, 2))]
-
-
-def window_mean(rows, col, lo, hi):
-    """Mean of column col over lo <= delta/h <= hi (trapezoidal in delta)."""
-    pts = [(r[0], r[col]) for r in rows if lo - 1e-9 <= r[0] <= hi + 1e-9]
-    if len(pts) == 1:
-        return pts[0][1]
-    if not pts:
-        return None
-    area = sum(0.5 * (y0 + y1) * (x1 - x0) for (x0, y0), (x1, y1) in zip(pts, pts[1:]))
-    width = pts[-1][0] - pts[0][0]
-    return area / width if width > 0 else sum(p[1] for p in pts) / len(pts)
-
-
-def bead_point(summ, rows):
-    """(restraining force, lift force) in N/mm and 'steady' or 'peak', from a
-    run's summary values and pull.dat rows; None if there is no pulling."""
-    eh = [r[2] / r[1] for r in rows if r[1] != 0.0]
-    if not eh:
-        return None
-    eh = sorted(eh)[len(eh) // 2]              # E h, N/mm
-    steady = summ.get('steady_force_over_Eh', 'none')
-    at = summ.get('steady_reached_at_delta_over_h', 'none')
-    if steady != 'none' and at != 'none':
-        at = float(at)
-        lift = window_mean(rows, 4, at - 2.0, at)
-        if lift is not None:
-            return float(steady) * eh, lift, 'steady'
-    peak = max(rows, key=lambda r: r[1])
-    return peak[1] * eh, peak[4], 'peak'
-
-
-def lsdyna_curve(lcid, title, points):
-    out = ['*DEFINE_CURVE_TITLE', title[:80],
-           '$#    lcid      sidr       sfa       sfo      offa      offo    dattyp',
-           '%10d%10d%10.4g%10.4g%10.4g%10.4g%10d' % (lcid, 0, 1.0, 1.0, 0.0, 0.0, 0),
-           '$#                a1                  o1']
-    for x, y in points:
-        out.append('%20.8g%20.8g' % (x, y))
-    return out
-
-
-def cmd_curves(args):
-    origin = True
-    lcid0 = 1
-    rest = []
-    for a in args:
-        if a == '--no-origin':
-            origin = False
-        elif a.startswith('--lcid='):
-            lcid0 = int(a.split('=', 1)[1])
-        else:
-            rest.append(a)
-    if len(rest) != 2:
-        die('usage: sweep_tool.py curves SWEEPDIR OUTDIR [--no-origin] [--lcid=N]')
-    sweepdir, outdir = rest
-    names, cases = read_cases(sweepdir)
-    statuses = read_statuses(sweepdir)
-    if 'lock_depth' not in names:
-        die('%s is not a sweep over lock_depth (swept: %s)' % (sweepdir, ', '.join(names) or 'nothing'))
-    ilock = names.index('lock_depth')
-    others = [n for n in names if n != 'lock_depth']
-    groups = {}
-    for c in cases:
-        key = tuple(v for n, v in zip(names, c[1:]) if n != 'lock_depth')
-        groups.setdefault(key, []).append(c)
-    os.makedirs(outdir, exist_ok=True)
-    written = []
-    keyword = ['*KEYWORD',
-               '$ Equivalent drawbead curves from a drawbead sweep (%s)' % os.path.abspath(sweepdir),
-               '$ units: mm, N (force per unit bead length N/mm against penetration mm)']
-    lcid = lcid0
-    skipped = []
-    for key in sorted(groups):
-        tag = '_'.join('%s-%s' % (n, re.sub(r'[^A-Za-z0-9.+-]', '', v)) for n, v in zip(others, key))
-        desc = ', '.join('%s = %s' % (n, v) for n, v in zip(others, key))
-        rf, nf, used_peak, torn = [], [], [], []
-        for c in groups[key]:
-            depth = float(c[1 + ilock])
-            status, summ, _ = run_result(sweepdir, c[0], statuses)
-            if summ is None or status not in ('completed', 'localized'):
-                skipped.append('%s (lock_depth = %s): %s' % (c[0], c[1 + ilock], status))
-                continue
-            point = bead_point(summ, read_pull(os.path.join(sweepdir, 'runs', c[0])))
-            if point is None:
-                skipped.append('%s (lock_depth = %s): no pulling results' % (c[0], c[1 + ilock]))
-                continue
-            if point[2] == 'peak':
-                used_peak.append('%g' % depth)
-            if status == 'localized':
-                torn.append('%g' % depth)
-            rf.append((depth, point[0]))
-            nf.append((depth, point[1]))
-        if not rf:
-            continue
-        # the closing force F(H) while locking, from the deepest run
-        deepest = max(groups[key], key=lambda c: float(c[1 + ilock]))
-        closing = read_closing(os.path.join(sweepdir, 'runs', deepest[0]))
-        rf.sort()
-        nf.sort()
-        if origin and rf[0][0] > 0:
-            rf.insert(0, (0.0, 0.0))
-            nf.insert(0, (0.0, 0.0))
-        src = ('steady_force_over_Eh (summary.txt) times E h at every depth' if not used_peak else
-               'steady_force_over_Eh where present, else peak_force_over_Eh: peak used at '
-               'lock_depth = %s mm (no steady state)' % ', '.join(used_peak))
-        common = ['# from the sweep %s%s' % (os.path.abspath(sweepdir), (' (%s)' % desc) if desc else ''),
-                  '# per unit bead length (the plane-strain results are per unit width)']
-        if torn:
-            common.append('# the sheet localized (may tear) at lock_depth = %s mm: see delta_cr_over_h '
-                          'in the sweep table' % ', '.join(torn))
-        if origin and rf[0] == (0.0, 0.0):
-            common.append('# first point (0, 0) added: no penetration, no bead force (--no-origin leaves it out)')
-        suffix = ('_' + tag) if tag else ''
-        f1 = os.path.join(outdir, 'restraining%s.txt' % suffix)
-        f2 = os.path.join(outdir, 'lift%s.txt' % suffix)
-        with open(f1, 'w') as f:
-            f.write('# equivalent drawbead: restraining force per unit bead length vs penetration\n')
-            f.write('\n'.join(common) + '\n')
-            f.write('# restraining force: %s; it includes friction\n' % src)
-            f.write('# for LS-DYNA *CONTACT_DRAWBEAD LCIDRF, Radioss /INTER/TYPE8 Ft\n')
-            f.write('# 1: penetration = lock_depth [mm]   2: restraining force [N/mm]\n')
-            for x, y in rf:
-                f.write('%14.6f %16.6f\n' % (x, y))
-        with open(f2, 'w') as f:
-            f.write('# equivalent drawbead: lift (normal) force per unit bead length vs penetration\n')
-            f.write('\n'.join(common) + '\n')
-            f.write('# lift force: the force of the sheet opening the binder (pull.dat column 8), '
-                    'averaged over the steady-force window where the restraining force is the steady '
-                    'one, else at the peak restraining force\n')
-            f.write('# for LS-DYNA *CONTACT_DRAWBEAD LCIDNF, Radioss /INTER/TYPE8 Fn\n')
-            f.write('# 1: penetration = lock_depth [mm]   2: lift force [N/mm]\n')
-            for x, y in nf:
-                f.write('%14.6f %16.6f\n' % (x, y))
-        if closing:
-            f3 = os.path.join(outdir, 'closing%s.txt' % suffix)
-            with open(f3, 'w') as f:
-                f.write('# equivalent drawbead: closing (punch) force per unit bead length while the '
-                        'bead is pressed in\n')
-                f.write('\n'.join(common[:2]) + '\n')
-                f.write('# from lock.dat of %s (lock_depth = %s mm): F (column 3) against H '
-                        '(column 1 times h)\n' % (deepest[0], deepest[1 + ilock]))
-                f.write('# the force bending the sheet into the bead as the binder closes (LS-DYNA\'s '
-                        'description of LCIDNF); lift.txt is the force during drawing\n')
-                f.write('# 1: penetration = H [mm]   2: closing force [N/mm]\n')
-                if origin and closing[0][0] > 0:
-                    f.write('%14.6f %16.6f\n' % (0.0, 0.0))
-                for x, y in closing:
-                    f.write('%14.6f %16.6f\n' % (x, y))
-            written.append(f3)
-        keyword += ['$', '$ %s' % (desc or 'all cases'),
-                    '$ LCID %d: restraining force (LCIDRF), LCID %d: normal force (LCIDNF)' % (lcid, lcid + 1)]
-        keyword += lsdyna_curve(lcid, 'drawbead restraining force N/mm vs mm' + (' ' + tag if tag else ''), rf)
-        keyword += lsdyna_curve(lcid + 1, 'drawbead normal force N/mm vs mm' + (' ' + tag if tag else ''), nf)
-        lcid += 2
-        written += [f1, f2]
-    if not written:
-        die('no completed runs with pulling results in %s' % sweepdir, 1)
-    keyword.append('*END')
-    kfile = os.path.join(outdir, 'drawbead_curves.k')
-    with open(kfile, 'w') as f:
-        f.write('\n'.join(keyword) + '\n')
-    written.append(kfile)
-    for w in written:
-        print(w)
-    for s in skipped:
-        sys.stderr.write('bead_curves: left out %s\n' % s)
-
-
 def main(argv):
     if len(argv) < 2 or argv[1] in ('-h', '--help'):
         sys.stdout.write(__doc__)
@@ -615,8 +398,6 @@ def main(argv):
         cmd_decks(args)
     elif cmd == 'collect':
         return cmd_collect(args)
-    elif cmd == 'curves':
-        cmd_curves(args)
     else:
         die("unknown subcommand '%s'" % cmd)
     return 0

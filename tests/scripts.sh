@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # scripts.sh -- tests of the batch scripts: scripts/run_paper.sh (with the
 # gnuplot scripts scripts/plot_*.gp), scripts/sweep.sh (local and --slurm)
-# and scripts/bead_curves.sh.
+# and scripts/bench.sh (scripts/bead_curves.sh: tests/bead_cards.sh).
 #
 # Usage: tests/scripts.sh [binary]   (default: $DRAWBEAD, else bin/drawbead)
 #
@@ -23,8 +23,6 @@
 #   d) sweep.sh --slurm: the array range matches the deck count, the
 #      script passes bash -n, one task run by hand gives that deck's
 #      summary, and --collect builds the table (not_run for the others)
-#   e) bead_curves.sh on a lock_depth sweep of a small bead A deck: both
-#      curves with N/mm headers and the LS-DYNA keyword file
 #   f) shellcheck (if installed) finds nothing in the batch scripts, the
 #      test scripts and scripts/lib.sh
 #   g) bench.sh on a 20-element strip with 1 and 2 threads and a scaling
@@ -71,16 +69,6 @@ is_png() {
 # data_rows FILE: the number of lines not starting with '#'
 data_rows() {
     grep -cv '^#' "$1" 2>/dev/null
-}
-
-# column1_is FILE "V1 V2 ...": the data rows' first column, as written
-column1_is() {
-    [[ $(awk '!/^#/ { printf "%s%s", sep, $1; sep = " " }' "$1") == "$2" ]]
-}
-
-# column2_increases FILE: the data rows' second column strictly increases
-column2_increases() {
-    awk '!/^#/ { if (n++ > 0 && $2 <= last) bad = 1; last = $2 } END { exit bad }' "$1"
 }
 
 have_gnuplot=0
@@ -145,24 +133,6 @@ cat >"$tmp/strip.nml" <<'EOF'
    pull_distance = 0.762
    initial_increment = 0.0762
    max_increment = 0.762
-/
-EOF
-cat >"$tmp/beadA_free.nml" <<'EOF'
-&control
-   title = 'test: bead A, steel, free edge, 40 elements'
-/
-&sheet
-   thickness = 0.762
-   length = 38.1
-   n_elements = 40
-   left_edge = 'free'
-/
-&tools
-   bead = 'rectangular'
-   friction = 0.1
-/
-&loading
-   pull_distance = 1.524
 /
 EOF
 
@@ -293,28 +263,6 @@ scripts/sweep.sh --collect "$tmp/slurm" >/dev/null 2>&1
 rc=$?
 check "--collect exits 0 once every task ran (got $rc)" test "$rc" -eq 0
 check "--collect: three rows" test "$(data_rows "$tmp/slurm/table.txt")" -eq 3
-
-# ---------------------------------------------------------------------------
-# e) bead_curves.sh
-# ---------------------------------------------------------------------------
-echo "== e) bead_curves.sh"
-scripts/sweep.sh --bin "$prog" -j 2 -o "$tmp/beads" "$tmp/beadA_free.nml" lock_depth=2.5,4.7 \
-    >/dev/null 2>"$tmp/e.err"
-rc=$?
-check "the lock_depth sweep runs (got $rc)" test "$rc" -eq 0
-scripts/bead_curves.sh "$tmp/beads" >"$tmp/e.out" 2>>"$tmp/e.err"
-rc=$?
-check "bead_curves.sh exits 0 (got $rc)" test "$rc" -eq 0
-rf=$tmp/beads/bead_curves/restraining.txt
-nf=$tmp/beads/bead_curves/lift.txt
-check "restraining-force curve: origin and two depths" test "$(data_rows "$rf")" -eq 3
-check "lift-force curve: origin and two depths" test "$(data_rows "$nf")" -eq 3
-check "units in the header (N/mm vs mm)" grep -q '^# 1: penetration = lock_depth \[mm\] *2: restraining force \[N/mm\]' "$rf"
-check "the header says steady or peak" grep -q '^# restraining force: .*peak_force_over_Eh\|^# restraining force: steady' "$rf"
-check "depths in column 1" column1_is "$rf" "0.000000 2.500000 4.700000"
-check "forces grow with the depth" column2_increases "$rf"
-check "LS-DYNA keyword file with two curves" \
-    test "$(grep -c '^\*DEFINE_CURVE_TITLE' "$tmp/beads/bead_curves/drawbead_curves.k")" -eq 2
 
 # ---------------------------------------------------------------------------
 # f) shellcheck
