@@ -26,8 +26,9 @@
 # *DEFINE_CURVE_TITLE cards (LCID N, N+1, N+2, ...: restraining then lift
 # force for each combination), for *CONTACT_DRAWBEAD's LCIDRF and LCIDNF.
 # The forces are in N/mm (E h of each run times the normalized values).
-# Only runs that completed or localized are used (the depths at which the
-# sheet localized are named in the headers); the others are reported on
+# Only runs that completed, tore or localized are used (tearing is a
+# result: the depths at which the sheet tore or localized are named in the
+# headers, their force that up to tearing); the others are reported on
 # stderr. The restraining force includes friction: see docs/user-guide.md for how
 # to use the curves.
 #

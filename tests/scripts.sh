@@ -19,12 +19,16 @@
 #      four-row table; a sweep with friction=-1 lists that case as
 #      bad_input with the program's message, and exits 1; a variable the
 #      base deck does not set (snapshot_every, from the program's
-#      --list-variables) is added to its group and read by the program
+#      --list-variables) is added to its group and read by the program; a
+#      sweep whose runs tear exits 0, its rows torn, no failure counted;
+#      SIGTERM to a sweep stops its runs (exit 4 each, none left going)
+#      and writes the table of what finished, marked interrupted (exit 143)
 #   d) sweep.sh --slurm: the array range matches the deck count, the
 #      script passes bash -n, one task run by hand gives that deck's
 #      summary, and --collect builds the table (not_run for the others)
 #   e) bead_curves.sh on a lock_depth sweep of a small bead A deck: both
-#      curves with N/mm headers and the LS-DYNA keyword file
+#      curves with N/mm headers and the LS-DYNA keyword file; a run that
+#      tore keeps its point
 #   f) shellcheck (if installed) finds nothing in the batch scripts, the
 #      test scripts and scripts/lib.sh
 #   g) bench.sh on a 20-element strip with 1 and 2 threads and a scaling
@@ -262,6 +266,41 @@ check "... added to its group &control" \
 check "... and read by the program (SNAPSHOT_EVERY=0.1)" \
     grep -q '^ *SNAPSHOT_EVERY= *0\.1000' "$tmp/sweepnew/runs/case_0000/run.log"
 
+# tearing is a result, not a failure (issue 28, item 9: a torn run was
+# counted failed in the table, and the sweep exited 1)
+scripts/sweep.sh --bin "$prog" -j 2 -o "$tmp/sweeptorn" input/strip_tension.nml n_elements=20,30 \
+    >"$tmp/c5.out" 2>"$tmp/c5.err"
+rc=$?
+check "a sweep whose runs tear exits 0 (got $rc)" test "$rc" -eq 0
+check "... its rows say torn" test "$(grep -Ec '^case_000[01] .* torn$' "$tmp/sweeptorn/table.txt")" -eq 2
+check "... and the table counts no failure" grep -q '^# drawbead sweep: 2 cases, 0 failed, 0 not run' "$tmp/sweeptorn/table.txt"
+
+# SIGTERM stops the runs and writes the table of what finished, marked
+# interrupted (issue 28, item 10: sweep.sh exited 143, its runs went on,
+# no table); case_0000 is quick, the other two run for minutes
+printf '&sheet n_elements = 2000 /\n&loading pull_distance = 0.5 initial_increment = 0.001 max_increment = 0.001 /\n' \
+    >"$tmp/slow.nml"
+scripts/sweep.sh --bin "$prog" -j 2 -o "$tmp/sweepint" "$tmp/slow.nml" \
+    pull_distance=0.001,0.4,0.5 >"$tmp/c6.out" 2>"$tmp/c6.err" &
+sweep_pid=$!
+for _ in $(seq 300); do
+    [[ -s $tmp/sweepint/runs/case_0000/exit_status ]] &&
+        grep -qs 'increments = *[1-9]' "$tmp/sweepint/runs/case_0001/summary.txt" &&
+        grep -qs 'increments = *[1-9]' "$tmp/sweepint/runs/case_0002/summary.txt" && break
+    sleep 0.1
+done
+kill -TERM "$sweep_pid"
+wait "$sweep_pid"
+rc=$?
+check "SIGTERM: sweep.sh exits 143 (got $rc)" test "$rc" -eq 143
+check "... no run of the sweep is left going" test -z "$(pgrep -f -- "--output $tmp/sweepint/runs")"
+check "... the stopped runs exited 4 (interrupted)" \
+    test "$(cat "$tmp/sweepint/runs/case_0001/exit_status" "$tmp/sweepint/runs/case_0002/exit_status")" = $'4\n4'
+check "... the table is written, marked interrupted" \
+    grep -q '^# INTERRUPTED: SIGTERM stopped the sweep: 1 of 3 cases finished, 2 stopped, 0 not run' "$tmp/sweepint/table.txt"
+check "... with the finished run's row" grep -Eq '^case_0000 +0\.001 .* completed$' "$tmp/sweepint/table.txt"
+check "... and the stopped runs' rows" test "$(grep -Ec '^case_000[12] .* interrupted$' "$tmp/sweepint/table.txt")" -eq 2
+
 # ---------------------------------------------------------------------------
 # d) sweep.sh --slurm
 # ---------------------------------------------------------------------------
@@ -315,6 +354,14 @@ check "depths in column 1" column1_is "$rf" "0.000000 2.500000 4.700000"
 check "forces grow with the depth" column2_increases "$rf"
 check "LS-DYNA keyword file with two curves" \
     test "$(grep -c '^\*DEFINE_CURVE_TITLE' "$tmp/beads/bead_curves/drawbead_curves.k")" -eq 2
+# a run that tore keeps its point (issue 28, item 9: torn runs were left out)
+sed -i 's/^status = .*/status = torn/' "$tmp/beads/runs/case_0001/summary.txt"
+scripts/bead_curves.sh -o "$tmp/beads/torn_curves" "$tmp/beads" >/dev/null 2>>"$tmp/e.err"
+rc=$?
+check "bead_curves.sh with a torn run exits 0 (got $rc)" test "$rc" -eq 0
+check "... keeps its depth" column1_is "$tmp/beads/torn_curves/restraining.txt" "0.000000 2.500000 4.700000"
+check "... and says it tore" grep -q '^# the sheet tore or localized at lock_depth = 4.7 mm' \
+    "$tmp/beads/torn_curves/restraining.txt"
 
 # ---------------------------------------------------------------------------
 # f) shellcheck
