@@ -133,6 +133,19 @@ $(FLAGS_STAMP):
 $(BUILD)/%.o: src/%.f90 $(FLAGS_STAMP)
 	$(FC) $(FFLAGS) -J $(BUILD) -c -o $@ $<
 
+# An object whose module file is missing (an interrupted build, two makes
+# at once in one tree, a deleted .mod) is removed before make decides
+# anything, so that it is rebuilt with its module: else every object that
+# uses the module fails with "Cannot open module file" until make clean
+# (every src/ file but the main program holds one module named like it).
+ifneq (,$(NEED_DEPS))
+ORPHAN_OBJS := $(foreach o,$(wildcard $(LIB_OBJS)),$(if $(wildcard $(o:.o=.mod)),,$(o)))
+ifneq (,$(ORPHAN_OBJS))
+$(info make: $(notdir $(ORPHAN_OBJS:.o=.mod)) missing: $(notdir $(ORPHAN_OBJS)) rebuilt)
+$(shell rm -f $(ORPHAN_OBJS))
+endif
+endif
+
 # Rebuilt from scratch so that objects of deleted sources do not linger;
 # $(DEPS) changes whenever the list of sources does.
 $(LIB): $(LIB_OBJS) $(DEPS)
