@@ -139,7 +139,7 @@ $(BUILD)/%.o: src/%.f90 $(FLAGS_STAMP)
 # uses the module fails with "Cannot open module file" until make clean
 # (every src/ file but the main program holds one module named like it).
 ifneq (,$(NEED_DEPS))
-ORPHAN_OBJS := $(foreach o,$(wildcard $(LIB_OBJS)),$(if $(wildcard $(o:.o=.mod)),,$(o)))
+ORPHAN_OBJS := $(strip $(foreach o,$(wildcard $(LIB_OBJS)),$(if $(wildcard $(o:.o=.mod)),,$(o))))
 ifneq (,$(ORPHAN_OBJS))
 $(info make: $(notdir $(ORPHAN_OBJS:.o=.mod)) missing: $(notdir $(ORPHAN_OBJS)) rebuilt)
 $(shell rm -f $(ORPHAN_OBJS))

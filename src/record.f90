@@ -7,13 +7,13 @@ module record
    implicit none
    private
    public :: run_record, run_record_init, record_pull, record_lock, neck_record, split_record, split_note
-   public :: run_ok, run_no_convergence, run_interrupted, run_write_failed
+   public :: run_ok, run_no_convergence, run_interrupted, run_write_failed, run_out_of_memory
 
    !> run_record%status: the run went on to its end (or stopped at tearing);
    !> an increment could not converge; SIGTERM or SIGINT stopped it; a
-   !> result file could not be written.
+   !> result file could not be written; an allocation failed.
    integer, parameter :: run_ok = 0, run_no_convergence = 2, run_interrupted = 3, &
-                         run_write_failed = 4
+                         run_write_failed = 4, run_out_of_memory = 5
 
    !> The neck's refined zone (&sheet refine_neck, docs/theory.md §7.5):
    !> refinement is 'off' (not asked for), 'first' (this is the first pass
