@@ -268,11 +268,20 @@ endif
 
 # Runs every suite, then every tests/*.sh (with bash, from the top directory;
 # the program's absolute path is both the first argument and $DRAWBEAD);
-# fails if anything fails.
+# fails if anything fails.  The suites' tests of warnings make the program
+# print *WARNING* lines on purpose: they go to $(RUNNER_WARNINGS), and the
+# log says how many (all of the runner's stderr is shown when it fails).
+RUNNER_WARNINGS := $(BUILD)/tests/expected_warnings.txt
 test: $(RUNNER) $(TEST_NEEDS_BIN)
 	@status=0; \
 	echo "== $(RUNNER)"; \
-	DRAWBEAD='$(abspath $(BIN))' $(RUNNER) || status=1; \
+	mkdir -p $(dir $(RUNNER_WARNINGS)); \
+	if DRAWBEAD='$(abspath $(BIN))' $(RUNNER) 2>$(RUNNER_WARNINGS); then \
+	    echo "($$(grep -c '^\*WARNING\*' $(RUNNER_WARNINGS)) *WARNING* lines of tests that warn on purpose, expected: $(RUNNER_WARNINGS))"; \
+	    grep -v '^\*WARNING\*' $(RUNNER_WARNINGS) >&2; \
+	else \
+	    status=1; cat $(RUNNER_WARNINGS) >&2; \
+	fi; \
 	for script in $(TEST_SCRIPTS); do \
 	    echo "== bash $$script"; \
 	    if DRAWBEAD='$(abspath $(BIN))' bash "$$script" '$(abspath $(BIN))'; then \
