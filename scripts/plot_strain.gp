@@ -11,7 +11,7 @@
 #             the pull distance and the tearing point for the legend)
 #   OUT.png   the picture; .png (pngcairo), .pdf (pdfcairo) or .svg
 #   --title   the plot title (default: the run's title, from summary.txt)
-#   --key     a gnuplot "set key" position (default 'inside top left',
+#   --key     a gnuplot "set key" position (default 'inside top left Left reverse',
 #             in the frame where the sheet's left end is straight)
 #   --no-marks  do not mark the tearing points s* of summary.txt
 #
@@ -34,7 +34,7 @@ out = ARGV[ARGC]
 dir = ''
 ptitle = '__default__'
 psize = ''
-pkey = 'inside top left'
+pkey = 'inside top left Left reverse'
 marks = 1
 do for [i = 1:ARGC - 1] {
     a = ARGV[i]

@@ -194,6 +194,18 @@ if ((have_gnuplot)); then
         check "figure $png.png drawn" is_png "$tmp/out/figures/$png.png"
     done
     check "no figure for decks that did not run (fig9)" test ! -e "$tmp/out/figures/fig9.png"
+    # each force figure gives E h in N/mm, from the run's own columns
+    # (issue 28: forces were only in N/(E h)); the strain figure's legend
+    # is inside the frame (it sat below the x label)
+    d7=$tmp/out/fig7c_beadB_steel_mu0
+    eh=$(awk '!/^#/ && NF && $2 != 0 { printf "%.0f", $3 / $2; exit }' "$d7/lock.dat")
+    gnuplot -c scripts/plot_lock.gp "$d7/lock.dat::bead B" "$tmp/fig7.svg" 2>/dev/null
+    check "plot_lock.gp: the legend gives E h = $eh N/mm" grep -q "bead B  (E h = $eh N/mm)" "$tmp/fig7.svg"
+    gnuplot -c scripts/plot_pull.gp "$tmp/out/fig6_beadB_steel/pull.dat::bead B" "$tmp/fig8.svg" 2>/dev/null
+    check "plot_pull.gp: the legend gives E h = $eh N/mm" grep -q "bead B  (E h = $eh N/mm)" "$tmp/fig8.svg"
+    check "plot_strain.gp: the legend inside the frame" grep -q "^pkey = 'inside " scripts/plot_strain.gp
+    check "run_paper.sh: Fig. 7's title names its mu = 0.1 curve" \
+        grep -q "Fig. 7  Punch force vs. lock depth, clamped edge, μ = 0 (dashed black: μ = 0.1)" scripts/run_paper.sh
 else
     echo "skip the figures: gnuplot is not installed"
 fi
