@@ -113,6 +113,13 @@ contains
    subroutine run_record_init(rec)
       type(run_record), intent(out) :: rec
       allocate (rec%pull_delta(1024), rec%pull_force(1024), rec%lock_lift(1024), rec%lock_tension(1024))
+      ! zeros, not whatever the heap held: a summary of a run with no pull
+      ! row still forms pull_force(1)/(E h) (a denormal there raised the
+      ! underflow flag the checked build notes)
+      rec%pull_delta = 0.0_dp
+      rec%pull_force = 0.0_dp
+      rec%lock_lift = 0.0_dp
+      rec%lock_tension = 0.0_dp
    end subroutine run_record_init
 
    !> RECORD_PULL: append (delta, N) to the pull history, growing it as needed.

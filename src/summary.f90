@@ -173,7 +173,8 @@ contains
       call put(text, 'fold_curvature', ctl%fold_curvature, .true.)
       call put(text, 'lock_force_over_Eh', rec%lock_force/eh, m%has_tools)
       call put(text, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
-      call put(text, 'final_force_over_Eh', rec%pull_force(max(rec%n_pull, 1))/eh, rec%n_pull > 0)
+      call put(text, 'final_force_over_Eh', merge(rec%pull_force(max(rec%n_pull, 1)), 0.0_dp, rec%n_pull > 0)/eh, &
+               rec%n_pull > 0)
       call put(text, 'steady_force_over_Eh', fsteady/eh, steady)
       call put(text, 'steady_reached_at_delta_over_h', steady_at/h, steady)
       call put(text, 'final_lift_over_Eh', rec%last_lift/eh, rec%n_pull > 0 .and. m%has_tools)
