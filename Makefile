@@ -133,6 +133,19 @@ $(FLAGS_STAMP):
 $(BUILD)/%.o: src/%.f90 $(FLAGS_STAMP)
 	$(FC) $(FFLAGS) -J $(BUILD) -c -o $@ $<
 
+# An object whose module file is missing (an interrupted build, two makes
+# at once in one tree, a deleted .mod) is removed before make decides
+# anything, so that it is rebuilt with its module: else every object that
+# uses the module fails with "Cannot open module file" until make clean
+# (every src/ file but the main program holds one module named like it).
+ifneq (,$(NEED_DEPS))
+ORPHAN_OBJS := $(strip $(foreach o,$(wildcard $(LIB_OBJS)),$(if $(wildcard $(o:.o=.mod)),,$(o))))
+ifneq (,$(ORPHAN_OBJS))
+$(info make: $(notdir $(ORPHAN_OBJS:.o=.mod)) missing: $(notdir $(ORPHAN_OBJS)) rebuilt)
+$(shell rm -f $(ORPHAN_OBJS))
+endif
+endif
+
 # Rebuilt from scratch so that objects of deleted sources do not linger;
 # $(DEPS) changes whenever the list of sources does.
 $(LIB): $(LIB_OBJS) $(DEPS)
@@ -255,11 +268,20 @@ endif
 
 # Runs every suite, then every tests/*.sh (with bash, from the top directory;
 # the program's absolute path is both the first argument and $DRAWBEAD);
-# fails if anything fails.
+# fails if anything fails.  The suites' tests of warnings make the program
+# print *WARNING* lines on purpose: they go to $(RUNNER_WARNINGS), and the
+# log says how many (all of the runner's stderr is shown when it fails).
+RUNNER_WARNINGS := $(BUILD)/tests/expected_warnings.txt
 test: $(RUNNER) $(TEST_NEEDS_BIN)
 	@status=0; \
 	echo "== $(RUNNER)"; \
-	DRAWBEAD='$(abspath $(BIN))' $(RUNNER) || status=1; \
+	mkdir -p $(dir $(RUNNER_WARNINGS)); \
+	if DRAWBEAD='$(abspath $(BIN))' $(RUNNER) 2>$(RUNNER_WARNINGS); then \
+	    echo "($$(grep -c '^\*WARNING\*' $(RUNNER_WARNINGS)) *WARNING* lines of tests that warn on purpose, expected: $(RUNNER_WARNINGS))"; \
+	    grep -v '^\*WARNING\*' $(RUNNER_WARNINGS) >&2; \
+	else \
+	    status=1; cat $(RUNNER_WARNINGS) >&2; \
+	fi; \
 	for script in $(TEST_SCRIPTS); do \
 	    echo "== bash $$script"; \
 	    if DRAWBEAD='$(abspath $(BIN))' bash "$$script" '$(abspath $(BIN))'; then \

@@ -223,7 +223,7 @@ def run_point(sweepdir, rel, statuses, peak=False):
     rundir = os.path.join(sweepdir, rel)
     status = statuses.get(os.path.basename(rel), 'not_run')
     summ = st.read_summary(os.path.join(rundir, 'summary.txt'))
-    if summ is None or status not in ('completed', 'localized'):
+    if summ is None or status not in ('completed', 'localized', 'torn'):
         return status, None
     return status, bead_point(summ, read_pull(rundir), peak)
 
@@ -461,7 +461,7 @@ def cmd_curves(args):
             what = '%s (lock_depth = %s)' % (c[0], c[1 + ilock])
             status, point = run_point(sweepdir, os.path.join('runs', c[0]), statuses)
             if point is None:
-                skipped.append('%s: %s' % (what, status if status not in ('completed', 'localized')
+                skipped.append('%s: %s' % (what, status if status not in ('completed', 'localized', 'torn')
                                            else 'no pulling results'))
                 continue
             rel = companions.get(c[0])
@@ -472,7 +472,7 @@ def cmd_curves(args):
             fstatus, fpoint = run_point(sweepdir, rel, fst)
             if fpoint is None:
                 skipped.append('%s: its frictionless companion %s: %s'
-                               % (what, rel, fstatus if fstatus not in ('completed', 'localized')
+                               % (what, rel, fstatus if fstatus not in ('completed', 'localized', 'torn')
                                   else 'no pulling results'))
                 continue
             # the same measure for a run and its companion: the peak for
@@ -488,7 +488,7 @@ def cmd_curves(args):
                 peak_total.append('%g' % depth)
             if fpoint[2] == 'peak':
                 peak_bending.append('%g' % depth)
-            if status == 'localized':
+            if status in ('localized', 'torn'):
                 torn.append('%g' % depth)
             rows.append((depth, point[0], fpoint[0], point[1]))
         if not rows:

@@ -25,7 +25,9 @@
 # large), lock.dat, pull.dat, strain_lock.dat, strain_pull.dat (the
 # continuum's results in the program's columns), continuum_summary.txt,
 # program_summary.txt (the same numbers read off the program's files),
-# comparison.txt (both, and their ratio; also printed) and, with gnuplot,
+# comparison.txt (both, and their ratio; also printed; the continuum's
+# numbers from the first output time at which it is not a sheet lying in
+# the tools are left out, and a line says when and why) and, with gnuplot,
 # lock.png, pull.png and strain.png (program and continuum together).
 # CalculiX runs on OMP_NUM_THREADS threads (default 1).
 #
@@ -144,6 +146,9 @@ if ((plot)) && command -v gnuplot >/dev/null 2>&1; then
 fi
 
 status=$(summary_value "$dir/continuum_summary.txt" status)
+state=$(summary_value "$dir/continuum_summary.txt" continuum_state)
+[[ $state == 'sheet in the tools' ]] ||
+    note "the continuum is $state: its numbers from then on are left out of comparison.txt"
 note "continuum: $status; results in $dir"
 [[ $status == completed ]] || exit 1
 exit 0

@@ -462,6 +462,14 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
     # paper's beads, on the lower tool's face where it rises above y = 0
     # (a lock step at the edge), never above the upper tool's face
     edge_amp = {}
+    # the tools' centreline chains (where the sheet's centreline lies in
+    # contact) on a grid of h/4, for continuum_results.py's check that the
+    # continuum is a sheet lying in the tools
+    tool_grid = None
+    if tool_nodes:
+        xs = [-half - 3 * h + 0.25 * h * k for k in range(int((2 * half + pull + 6 * h) / (0.25 * h)) + 1)]
+        tool_grid = {'x': xs, 'upper': [chain_height(up, x, h) for x in xs],
+                     'lower': [chain_height(lo, x, h) for x in xs]}
     if tool_nodes:
         for name, x in (('LEFT', -half), ('RIGHT', half)):
             pts = edge_heights(up, lo, x, lock)
@@ -578,6 +586,7 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
         'mid': mid, 'top': top, 'bottom': bot, 'n_sheet_elements': n_sheet_elems,
         'bead_half_width': bead_half_width(tools, bead, h),
         'edge_heights': {k.lower(): v for k, v in edge_amp.items()},
+        'tool_grid': tool_grid,
     }
     with open(os.path.join(out_dir, 'continuum_model.json'), 'w') as f:
         json.dump(info, f)

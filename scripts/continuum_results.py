@@ -12,14 +12,19 @@ convert   reads CCX_DIR/continuum.dat, continuum.sta and continuum_model.json
           OUT_DIR lock.dat, pull.dat, strain_lock.dat, strain_pull.dat (the
           columns, units and header style of docs/output-reference.md; the
           columns a continuum cannot give are NaN, see docs/continuum-check.md)
-          and continuum_summary.txt.
+          and continuum_summary.txt. Each output time's state is checked
+          to be a sheet lying in the tools (state_problem): from the first
+          time it is not, the continuum's numbers are left out of its
+          summary (none), and continuum_state says when and why.
 metrics   prints, in the format of continuum_summary.txt, the same numbers
           read off any folder holding lock.dat, pull.dat and strain_lock.dat
           (a run of bin/drawbead), for the comparison; MODEL_JSON gives the
           thickness, the half-length and the bead's half-width.
 compare   prints a table: each number of both files and the ratio
           first / second (columns headed LABEL1, LABEL2; default program,
-          continuum), e.g. two continuum meshes.
+          continuum), e.g. two continuum meshes; a line under it says
+          when the continuum's state was not a sheet in the tools (its
+          numbers from then on left out).
 
 Exit status 0; 2 on a missing or unreadable file.
 """
@@ -115,6 +120,57 @@ def read_sta(path):
     except OSError:
         pass
     return res
+
+
+# ---------------------------------------------------------------------------
+# Is the continuum a sheet lying in the tools?
+# ---------------------------------------------------------------------------
+
+# a mid-surface node more than this many h above the upper tool's chain or
+# below the lower tool's (the chains are where the centreline lies in
+# contact): the sheet has left the tools (penetration or a gap of a
+# fraction of h is contact as modelled)
+OUT_OF_TOOLS_H = 1.0
+# |ln lambda| or |thickness log strain| beyond this: no sheet in forming
+# (a thinning or stretch by the factor e)
+ABSURD_LOG_STRAIN = 1.0
+
+
+def state_problem(info, blk, t):
+    """None if the state at time t (a .dat block with U) is a sheet lying
+    in the tools, else why not, in words: a mid-surface node more than
+    OUT_OF_TOOLS_H h above the upper tool or below the lower one (at its
+    current x, the tools' chains taken over x +- h, the lower one raised by
+    the lock lift H = lock_depth min(t, 1)), or a strain beyond
+    ABSURD_LOG_STRAIN."""
+    h = info['thickness']
+    rows = strain_rows(info, blk)
+    for r in rows:
+        if abs(r[4]) > ABSURD_LOG_STRAIN or abs(r[7]) > ABSURD_LOG_STRAIN:
+            return ('an absurd strain at s = %.1fh: ln(lambda) = %.3g, thickness log strain %.3g'
+                    % (r[0], r[4], r[7]))
+    grid = info.get('tool_grid')
+    if not grid:
+        return None
+    xs, up, lo = grid['x'], grid['upper'], grid['lower']
+    dx = xs[1] - xs[0]
+    lift = info['lock_depth'] * min(t, 1.0)
+    X = {int(k): v for k, v in info['node_x'].items()}
+    Y = {int(k): v for k, v in info['node_y'].items()}
+    u = blk['U']
+    worst = None
+    for n in info['mid']:
+        x, y = X[n] + u[n][0], Y[n] + u[n][1]
+        k0 = min(max(int(math.floor((x - h - xs[0]) / dx)), 0), len(xs) - 1)
+        k1 = min(max(int(math.ceil((x + h - xs[0]) / dx)), 0), len(xs) - 1)
+        y_up = max(up[k0:k1 + 1])
+        y_lo = min(lo[k0:k1 + 1]) + lift
+        off = max(y - y_up, y_lo - y)
+        if off > OUT_OF_TOOLS_H * h and (worst is None or off > worst[0]):
+            worst = (off, X[n], 'above the upper' if y > y_up else 'below the lower')
+    if worst:
+        return ('the sheet at s = %.1fh stands %.1fh %s tool' % (worst[1] / h, worst[0] / h, worst[2]))
+    return None
 
 
 # ---------------------------------------------------------------------------
@@ -238,15 +294,27 @@ def convert(ccx_dir, out_dir):
         write_table(os.path.join(out_dir, name), [
             'drawbead strain distribution %s: %s' % (what, title), STRAIN_LEGEND,
             CONTINUUM_NOTE + '; time %s of 2' % ('none' if t is None else '%.6g' % t)], rows)
+    # the first output time whose state is not a sheet in the tools: the
+    # continuum's numbers from then on are left out of its summary
+    t_bad, why = None, ''
+    for t in u_times:
+        why = state_problem(info, dat[t], t)
+        if why:
+            t_bad = t
+            break
     t_end = 2.0 if pull > 0 else 1.0
     done = bool(times) and abs(times[-1] - t_end) < 1e-6
-    extra = [('status', 'completed' if done else 'no_convergence'),
+    state = ('sheet in the tools' if t_bad is None else
+             'not a sheet in the tools from time %.6g: %s' % (t_bad, why))
+    extra = [('continuum_state', state),
+             ('status', 'completed' if done else 'no_convergence'),
              ('final_time', '%.6g' % (times[-1] if times else 0.0)),
              ('increments', str(len(sta))),
              ('newton_iterations', str(sum(i for _, i in sta))),
              ('mesh', '%d x %d CPE8R (%d per h along, %d through the thickness)'
               % (info['nx'], info['ny'], info['per_h'], info['through']))]
-    text = summary_text(out_dir, info, 'continuum (CalculiX): %s' % info.get('title', ''), extra)
+    text = summary_text(out_dir, info, 'continuum (CalculiX): %s' % info.get('title', ''), extra,
+                        valid_until=t_bad)
     with open(os.path.join(out_dir, 'continuum_summary.txt'), 'w') as f:
         f.write(text)
 
@@ -279,7 +347,7 @@ def interp(xs, ys, x):
     return None
 
 
-def summary_text(run_dir, info, title, extra=()):
+def summary_text(run_dir, info, title, extra=(), valid_until=None):
     """The compared numbers of a run folder as 'key = value' lines.
 
     punch force at 98% of the lock depth and at full lock (lock.dat),
@@ -290,11 +358,24 @@ def summary_text(run_dir, info, title, extra=()):
     after locking and the straight-part strain: the median of lambda-1
     over the stations whose current |x| is more than 1h outside the bead
     (|x| > bead half-width + h) and whose |s| is more than 1h inside the
-    sheet's ends."""
+    sheet's ends.
+
+    valid_until: a time (locking 0..1, pulling 1..2) from which the run's
+    state is not a sheet in the tools (a continuum that went wrong): the
+    rows from then on are left out, and the strains after locking too
+    if it is 1 or less."""
     h, eh = info['thickness'], info['youngs_modulus'] * info['thickness']
     lock = read_rows(os.path.join(run_dir, 'lock.dat'))
     pull = read_rows(os.path.join(run_dir, 'pull.dat'))
     strain = read_rows(os.path.join(run_dir, 'strain_lock.dat'))
+    if valid_until is not None:
+        tol = 1e-9
+        if info['lock_depth'] > 0:
+            lock = [r for r in lock if r[0] * h / info['lock_depth'] < valid_until - tol]
+        if info['pull_distance'] > 0:
+            pull = [r for r in pull if 1.0 + r[0] * h / info['pull_distance'] < valid_until - tol]
+        if valid_until <= 1.0 + tol:
+            strain = []
     vals = []
     full = info['lock_depth'] / h
     if lock:
@@ -388,7 +469,12 @@ def compare(prog_path, cont_path, labels=('program', 'continuum')):
     """Print the table first / second of two summaries (column headings labels)."""
     p, c = dict(read_summary(prog_path)), read_summary(cont_path)
     print('%-40s %16s %16s %10s' % ('quantity', labels[0], labels[1], 'ratio'))
+    notes = []
     for k, cv in c:
+        if k == 'continuum_state':
+            if cv != 'sheet in the tools':
+                notes.append('# %s: %s; its numbers from then on are left out (none)' % (labels[1], cv))
+            continue
         if k not in p:
             continue
         pv = p[k]
@@ -397,6 +483,8 @@ def compare(prog_path, cont_path, labels=('program', 'continuum')):
         except (ValueError, ZeroDivisionError):
             ratio = '%10s' % '-'
         print('%-40s %16s %16s %s' % (k, short(pv), short(cv), ratio))
+    for line in notes:
+        print(line)
 
 
 def short(v):

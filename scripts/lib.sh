@@ -16,11 +16,16 @@
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd) || exit 2
 me=$(basename "${BASH_SOURCE[1]:-$0}")
 
-# The program's exit statuses (src/: 0 success, also after a localization;
-# 1 the deck was rejected; 2 no convergence)
+# The program's exit statuses (src/errors.f90, README: 0 success, also
+# after tearing or a localization; 1 the deck was rejected; 2 no
+# convergence; 3 a result file could not be written; 4 stopped by SIGTERM
+# or SIGINT; 5 out of memory)
 exit_ok=0
 exit_bad_input=1
 exit_no_convergence=2
+exit_write=3
+exit_interrupted=4
+exit_memory=5
 
 # The files a run writes into its output folder (with run.log and
 # exit_status, which run_deck adds); run_deck removes them before a run so
@@ -109,13 +114,26 @@ find_program() {
 # run_deck BIN DECK DIR: run BIN on DECK into DIR, one thread (the runs of
 # a batch share the machine), with stdout and stderr in DIR/run.log and
 # the exit status in DIR/exit_status; removes the outputs of an earlier
-# run first. Returns the program's exit status.
+# run first. A SIGTERM or SIGINT to the shell running it is passed on to
+# the program, which stops at a converged increment (status interrupted,
+# exit 4), and its status is still written. Returns the program's exit
+# status.
 run_deck() {
-    local bin=$1 deck=$2 dir=$3 rc f
+    local bin=$1 deck=$2 dir=$3 rc f run_pid run_signalled
     mkdir -p "$dir" || return 1
     for f in "${run_outputs[@]}"; do rm -f "${dir:?}/$f"; done
-    OMP_NUM_THREADS=1 "$bin" "$deck" --output "$dir" >"$dir/run.log" 2>&1
-    rc=$?
+    OMP_NUM_THREADS=1 "$bin" "$deck" --output "$dir" >"$dir/run.log" 2>&1 &
+    run_pid=$!
+    # shellcheck disable=SC2064 # the pid is fixed now
+    trap "run_signalled=1; kill -TERM $run_pid 2>/dev/null" TERM INT
+    while :; do
+        run_signalled=0
+        wait "$run_pid"
+        rc=$?
+        # a wait cut short by the signal: wait again for the program's status
+        ((run_signalled)) || break
+    done
+    trap - TERM INT
     echo "$rc" >"$dir/exit_status"
     return "$rc"
 }
@@ -123,16 +141,25 @@ run_deck() {
 # run_pool JOBS ON_DONE: run_deck "$bin" pool_decks[i] pool_dirs[i] for
 # every i, at most JOBS at a time (globals bin, pool_decks, pool_dirs), and
 # call "ON_DONE i STATUS" in this shell as each run ends. Returns the
-# number of runs that exited non-zero (at most 255).
+# number of runs that exited non-zero (at most 255). pool_stop_runs (a
+# signal trap may call it) stops the runs going (run_deck passes SIGTERM
+# on to the program) and starts no more; run_pool then returns once they
+# have ended, and pool_stopped is 1.
 pool_decks=()
 pool_dirs=()
+pool_stopped=0
+pool_stop_runs() {
+    local pid
+    pool_stopped=1
+    for pid in $(jobs -p); do kill -TERM "$pid" 2>/dev/null; done
+}
 run_pool() {
     # the locals are prefixed: ON_DONE sees them (bash scopes dynamically)
     local pool_jobs=$1 pool_done=$2 pool_total=${#pool_decks[@]} pool_next=0 pool_failed=0
     local pool_pid pool_rc pool_running
     local -A pool_index=()
-    while ((pool_next < pool_total || ${#pool_index[@]} > 0)); do
-        while ((${#pool_index[@]} < pool_jobs && pool_next < pool_total)); do
+    while (((!pool_stopped && pool_next < pool_total) || ${#pool_index[@]} > 0)); do
+        while ((!pool_stopped && ${#pool_index[@]} < pool_jobs && pool_next < pool_total)); do
             run_deck "$bin" "${pool_decks[pool_next]}" "${pool_dirs[pool_next]}" &
             pool_index[$!]=$pool_next
             pool_next=$((pool_next + 1))
@@ -167,21 +194,27 @@ summary_value() {
 }
 
 # run_status DIR: the state of a run made by run_deck, one word: the
-# summary's status (completed, localized, ...) after exit 0 or 2,
-# no_convergence (exit 2 without a summary), no_summary, bad_input (exit
+# summary's status (completed, torn, localized, no_convergence,
+# interrupted, write_failed, out_of_memory) after exit 0, 2, 3, 4 or 5;
+# without a summary no_convergence, write_failed, interrupted,
+# out_of_memory (exit 2, 3, 4, 5) or no_summary (exit 0); bad_input (exit
 # 1), not_run (no exit_status yet) or failed_exit_N (a crash or signal)
 run_status() {
     local rc s
     rc=$(cat "$1/exit_status" 2>/dev/null) || rc=''
     case $rc in
-        "$exit_ok" | "$exit_no_convergence")
+        "$exit_ok" | "$exit_no_convergence" | "$exit_write" | "$exit_interrupted" | "$exit_memory")
             s=$(summary_value "$1/summary.txt" status)
-            if [[ -n $s ]]; then
+            if [[ -n $s && $s != running ]]; then
                 echo "$s"
-            elif [[ $rc == "$exit_no_convergence" ]]; then
-                echo no_convergence
             else
-                echo no_summary
+                case $rc in
+                    "$exit_no_convergence") echo no_convergence ;;
+                    "$exit_write") echo write_failed ;;
+                    "$exit_interrupted") echo interrupted ;;
+                    "$exit_memory") echo out_of_memory ;;
+                    *) echo no_summary ;;
+                esac
             fi
             ;;
         "$exit_bad_input") echo bad_input ;;

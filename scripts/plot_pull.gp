@@ -9,6 +9,9 @@
 #             column 2: N/(E h)); LABEL is its legend entry (default: the
 #             run's title, from the file's first line); STYLE is extra
 #             gnuplot line style text, e.g. 'dt 2 lw 1 lc rgb "black"'.
+#             Each legend entry ends with the run's E h in N/mm (column 3
+#             over column 2 of the file: the force in N/mm over the force
+#             over E h), for reading a force in N/mm off the plot.
 #   OUT.png   the picture; .png (pngcairo), .pdf (pdfcairo) or .svg.
 #   --title   the plot title (default: none); --size in pixels (PNG, SVG)
 #             or inches (PDF); --key a gnuplot "set key" position such as
@@ -90,6 +93,13 @@ do for [i = 1:ARGC - 1] {
         }
     }
 }
+# E h of each run, N/mm (column 3 over column 2: the force in N/mm and
+# over E h, of the deck's E and h), in its legend entry: a force in N/mm
+# is the plotted value times E h
+do for [i = 1:n] {
+    eh = real(system("awk '!/^#/ && NF && $2 != 0 { printf \"%.10g\", $3 / $2; exit }' '" . files[i] . "'"))
+    labels[i] = labels[i] . sprintf('  (E h = %.0f N/mm)', eh)
+}
 if (n == 0) {
     print "plot_pull.gp: nothing to plot"
     exit status 1
@@ -123,7 +133,7 @@ set linetype 8 lc rgb '#999999' lw 2.5 dt 4
 
 set title ptitle
 set xlabel 'pull displacement of the right edge  Δ/h  [-]'
-set ylabel 'restraining force  N/(E h)  [-]'
+set ylabel 'restraining force  N/(E h)  [-]   (E h in the legend)'
 set format y '%g'
 set grid lc rgb '#dddddd' lw 1
 set key box opaque samplen 3 spacing 1.2

@@ -11,7 +11,8 @@
 #             the pull distance and the tearing point for the legend)
 #   OUT.png   the picture; .png (pngcairo), .pdf (pdfcairo) or .svg
 #   --title   the plot title (default: the run's title, from summary.txt)
-#   --key     a gnuplot "set key" position (default 'below': under the axes)
+#   --key     a gnuplot "set key" position (default 'inside top left Left reverse',
+#             in the frame where the sheet's left end is straight)
 #   --no-marks  do not mark the tearing points s* of summary.txt
 #
 # Columns used: 1 (s/h, reference position) and 4 (lambda - 1). The pull
@@ -33,7 +34,7 @@ out = ARGV[ARGC]
 dir = ''
 ptitle = '__default__'
 psize = ''
-pkey = 'below'
+pkey = 'inside top left Left reverse'
 marks = 1
 do for [i = 1:ARGC - 1] {
     a = ARGV[i]

@@ -294,7 +294,7 @@ if ((do_figures)); then
             'fig7c_beadB_steel_mu0:(c) bead B, mild steel' \
             "fig7d_beadA_steel_mu01:bead A, mild steel, μ = 0.1:lw 1.2 dt 2 lc rgb '#000000'"
         if ((${#curve_args[@]} > 0)); then
-            gp plot_lock.gp '--title=Fig. 7  Punch force vs. lock depth, clamped edge, μ = 0' \
+            gp plot_lock.gp '--title=Fig. 7  Punch force vs. lock depth, clamped edge, μ = 0 (dashed black: μ = 0.1)' \
                 "${curve_args[@]}" "$figdir/fig7.png"
         fi
 

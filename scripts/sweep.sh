@@ -17,9 +17,10 @@
 # OUTDIR/table.txt: one row per case with the swept values,
 # steady_force_over_Eh, peak_force_over_Eh, final_lift_over_Eh,
 # delta_cr_over_h, max_thinning (from summary.txt) and the status:
-# completed, localized, no_convergence, bad_input (the deck was rejected),
-# or not_run; every failed case is listed under the table with the
-# program's error message. OUTDIR/decks.txt lists the decks (line k+1 is
+# completed, torn, localized (results: tearing is a result, exit status 0
+# of the program), no_convergence, interrupted, bad_input (the deck was
+# rejected), out_of_memory, or not_run; every failed case is listed under
+# the table with the program's error message. OUTDIR/decks.txt lists the decks (line k+1 is
 # case k), OUTDIR/cases.tsv the swept values, OUTDIR/status.tsv the
 # status of each case and OUTDIR/variables.txt the program's list of deck
 # variables.
@@ -48,8 +49,15 @@
 # the deck (profiles, curve files) mean what they mean for the base deck;
 # the Slurm script changes to this directory too.
 #
-# Exit status: 0 when every run exited 0; 1 when a run failed (its row is
-# in the table); 2 on a usage, deck or build error.
+# SIGTERM or SIGINT (Ctrl-C) stops the sweep: the runs going are stopped
+# (each at a converged increment, status interrupted), no more are
+# started, and the table of what finished is written, its first line
+# saying that the sweep was interrupted and by which signal.
+#
+# Exit status: 0 when every run exited 0 (completed, torn or localized);
+# 1 when a run failed (its row is in the table); 2 on a usage, deck or
+# build error; 143 (SIGTERM) or 130 (SIGINT) when a signal stopped the
+# sweep (the table written).
 set -u -o pipefail
 
 # shellcheck source=scripts/lib.sh
@@ -202,7 +210,7 @@ tty=0
 progress() {
     local eta
     finished=$((finished + 1))
-    (($2 == 0)) || failed=$((failed + 1))
+    (($2 == 0 || $2 == exit_interrupted)) || failed=$((failed + 1))
     eta=$(hms $(((SECONDS - t0) * (total - finished) / finished)))
     if ((tty)); then
         printf '\rdone %d/%d, %d failed, eta %s   ' "$finished" "$total" "$failed" "$eta" >&2
@@ -219,9 +227,21 @@ failed=0
 pool_decks=("${decks[@]}")
 pool_dirs=()
 for deck in "${decks[@]}"; do pool_dirs+=("$outdir/runs/$(basename "$deck" .nml)"); done
+# a signal stops the runs (the pool waits for them) and the table is written
+signal=''
+trap 'signal=TERM; pool_stop_runs' TERM
+trap 'signal=INT; pool_stop_runs' INT
 run_pool "$jobs_max" progress
+trap - TERM INT
 
 write_statuses "$outdir"
+if [[ -n $signal ]]; then
+    note "stopped by SIG$signal: $finished of $total runs ended, the rest not run"
+    python3 "$tool" collect "$outdir" --interrupted "SIG$signal"
+    note "table in $outdir/table.txt (interrupted)"
+    [[ $signal == TERM ]] && exit 143
+    exit 130
+fi
 python3 "$tool" collect "$outdir"
 collect_status=$?
 ((collect_status <= 1)) || exit 2

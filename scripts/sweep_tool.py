@@ -14,13 +14,17 @@ Subcommands:
       number of decks. Exit status 2 on a usage error (unknown variable,
       empty value list, unreadable deck).
 
-  collect OUTDIR
+  collect OUTDIR [--interrupted SIGNAL]
       Build OUTDIR/table.txt from cases.tsv, status.tsv (each case's
       status, written by scripts/lib.sh's write_statuses) and
-      OUTDIR/runs/<case>/ (summary.txt, run.log) and print it. A run that failed
-      keeps its row, with its status (bad_input, no_convergence, ...) and
-      the program's first error message in a '#' line below the table.
-      Exit status 1 if any case failed or has not run yet.
+      OUTDIR/runs/<case>/ (summary.txt, run.log) and print it. A run
+      that completed, tore or localized is a result (RESULT_STATUSES); a
+      run that failed keeps its row, with its status (bad_input,
+      no_convergence, ...) and the program's first error message in a
+      '#' line below the table. With --interrupted, the table's first
+      line says that SIGNAL stopped the sweep (its stopped runs have
+      status interrupted, the rest not_run). Exit status 1 if any case
+      failed or has not run yet.
 
 Overriding a variable: the group holding it in the base deck is used (its
 value replaced in place, comments kept); a variable the base deck does not
@@ -38,6 +42,10 @@ import sys
 # (bin/drawbead --list-variables, read by read_variables)
 VARIABLES = {}
 TYPES = ('real', 'integer', 'logical', 'text')
+
+# the statuses of summary.txt that are results (the run went to its end,
+# or to where the sheet tears: the program's exit status 0), not failures
+RESULT_STATUSES = ('completed', 'torn', 'localized')
 
 # the columns of table.txt after the swept variables
 RESULT_KEYS = ['steady_force_over_Eh', 'peak_force_over_Eh', 'final_lift_over_Eh',
@@ -353,13 +361,17 @@ def table_value(v):
 
 
 def cmd_collect(args):
+    interrupted = None
+    if len(args) == 3 and args[1] == '--interrupted':
+        interrupted = args[2]
+        args = args[:1]
     if len(args) != 1:
-        die('usage: sweep_tool.py collect OUTDIR')
+        die('usage: sweep_tool.py collect OUTDIR [--interrupted SIGNAL]')
     outdir = args[0]
     names, cases = read_cases(outdir)
     statuses = read_statuses(outdir)
     header = ['case'] + names + RESULT_KEYS + ['status']
-    rows, notes, not_run = [], [], []
+    rows, notes, not_run, stopped = [], [], [], []
     failed = 0
     for c in cases:
         status, summ, err = run_result(outdir, c[0], statuses)
@@ -367,16 +379,26 @@ def cmd_collect(args):
         rows.append([c[0]] + [table_value(v) for v in c[1:]] + vals + [status])
         if status == 'not_run':
             not_run.append(c[0])
-        elif status not in ('completed', 'localized'):
+        elif status == 'interrupted' and interrupted:
+            stopped.append(c[0])
+        elif status not in RESULT_STATUSES:
             failed += 1
             where = os.path.join(outdir, 'runs', c[0], 'run.log')
             notes.append('# %s: %s: %s (log: %s)' % (c[0], status, err or 'no error message', where))
+    if stopped:
+        notes.append('# stopped by %s (status interrupted, results so far in their folders): %s'
+                     % (interrupted, ', '.join(stopped)))
     if not_run:
         notes.append('# not run (no exit_status yet): %s' % ', '.join(not_run))
     widths = [max(len(r[i]) for r in [header] + rows) for i in range(len(header))]
     widths[0] = max(widths[0], len('# case'))
-    lines = ['# drawbead sweep: %d cases, %d failed, %d not run; columns: the swept values, '
-             'then summary.txt keys' % (len(cases), failed, len(not_run))]
+    lines = []
+    if interrupted:
+        lines.append('# INTERRUPTED: %s stopped the sweep: %d of %d cases finished, %d stopped, '
+                     '%d not run' % (interrupted, len(cases) - len(stopped) - len(not_run),
+                                     len(cases), len(stopped), len(not_run)))
+    lines.append('# drawbead sweep: %d cases, %d failed, %d not run; columns: the swept values, '
+                 'then summary.txt keys' % (len(cases), failed, len(not_run)))
     head = ['# case'] + header[1:]
     lines.append('  '.join(h.ljust(w) for h, w in zip(head, widths)).rstrip())
     for r in rows:
@@ -386,7 +408,7 @@ def cmd_collect(args):
     with open(os.path.join(outdir, 'table.txt'), 'w') as f:
         f.write(text)
     sys.stdout.write(text)
-    return 1 if failed or not_run else 0
+    return 1 if failed or not_run or stopped else 0
 
 
 def main(argv):

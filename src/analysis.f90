@@ -8,7 +8,8 @@
 !> -back_tension applied).  docs/theory.md §1, §8.1.
 module analysis
    use kinds, only: dp, output_unit
-   use errors, only: warn
+   use errors, only: warn, alloc_message
+   use text, only: itoa
    use hermite, only: n_gauss
    use element, only: igp_strain
    use band, only: band_matrix, band_init, band_error_message
@@ -17,6 +18,7 @@ module analysis
    use contact, only: ich_penetration
    use controls, only: controls_type
    use record, only: run_record, record_pull, record_lock, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
+                     run_out_of_memory, &
                      split_note
    use remesh, only: last_radius_exit, exit_pieces, split_elements, split_field, split_stations, &
                      exit_zone_before, exit_resplit_before
@@ -118,13 +120,29 @@ contains
       logical :: have_prev, have_force_prev, redo, paper_met, snapped, split_due
       character(len=16) :: tag
       character(len=200) :: msg
+      character(len=:), allocatable :: alloc_msg
+      integer :: stat
       h = m%thickness
       eh = m%youngs*h
       ell = ctl%tearing_length_over_h*h
       pulled = node_dof(m%n_nodes, dof_v)
-      allocate (r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el), dof_scale(m%n_dof))
+      ! the phase's large arrays: a failed allocation stops the run with
+      ! status out_of_memory (issue 28, item 6), the results so far kept
+      allocate (r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el), dof_scale(m%n_dof), &
+                stat=stat)
+      if (stat /= 0) then
+         rec%status = run_out_of_memory
+         rec%message = 'in '//phase//': '//alloc_message('the work arrays of '//itoa(m%n_el)//' elements', &
+                                                         8.0_dp*real(3*m%n_dof + n_gauss*m%n_el, dp))
+         return
+      end if
       dof_scale = phase_dof_scale(m)
-      call band_init(kb, m%n_dof, half_band, half_band)
+      call band_init(kb, m%n_dof, half_band, half_band, alloc_msg)
+      if (len(alloc_msg) > 0) then
+         rec%status = run_out_of_memory
+         rec%message = 'in '//phase//': '//alloc_msg
+         return
+      end if
       p = p0
       dt = ctl%initial_increment
       ! the force doing work on the load parameter: F while locking (starts
@@ -394,7 +412,12 @@ contains
                deallocate (dof_scale)
                allocate (dof_scale(m%n_dof))
                dof_scale = phase_dof_scale(m)
-               call band_init(kb, m%n_dof, half_band, half_band)
+               call band_init(kb, m%n_dof, half_band, half_band, alloc_msg)
+               if (len(alloc_msg) > 0) then
+                  rec%status = run_out_of_memory
+                  rec%message = 'in pull, after the split: '//alloc_msg
+                  return
+               end if
                rec%reactions = r
                rec%last_conjugate = r(pulled)
                force = r(pulled)
@@ -487,7 +510,8 @@ contains
       real(dp), allocatable :: r0(:), u_mapped(:)
       real(dp) :: x_exit, h, f_scale, pnewdt, alpha, da, force_change, energy_before(5), energy_after(5), work_dead
       logical :: found
-      integer :: first, last, steps
+      integer :: first, last, steps, stat
+      character(len=:), allocatable :: alloc_msg
       h = m%thickness
       allocate (pieces(m%n_el))
       pieces = 1
@@ -518,9 +542,23 @@ contains
       ! interpolated, and re-equilibration does work against the imbalance
       ! it removes): booked apart, so that the balance still checks the rest
       call energy_totals(m, s, energy_before)
-      call split_elements(m, s, pieces)
+      call split_elements(m, s, pieces, alloc_msg)
+      if (len(alloc_msg) > 0) then
+         ! (the mesh and the state are those before the split)
+         rec%status = run_out_of_memory
+         rec%message = 'in pull, splitting the elements at the exit: '//alloc_msg
+         pieces = 1
+         return
+      end if
       rec%split%elements_after = m%n_el
-      allocate (u_mapped(m%n_dof))
+      if (allocated(r)) deallocate (r)
+      allocate (u_mapped(m%n_dof), r(m%n_dof), r0(m%n_dof), stat=stat)
+      if (stat /= 0) then
+         rec%status = run_out_of_memory
+         rec%message = 'in pull, after the split: '//alloc_message('the work arrays of '//itoa(m%n_el)// &
+                                                                  ' elements', 24.0_dp*real(m%n_dof, dp))
+         return
+      end if
       u_mapped = s%u
       ! the mapped state in equilibrium at the same load: its imbalance r0
       ! (the mapped stresses are not in equilibrium on the new stations) is
@@ -530,9 +568,12 @@ contains
       ! the radius, a single Newton solve from the mapped state can leave
       ! the branch the run was on (bead A steel at 0.59h: diverged)
       call phase_load(m, 'pull', p, ld)
-      call band_init(kb, m%n_dof, half_band, half_band)
-      if (allocated(r)) deallocate (r)
-      allocate (r(m%n_dof), r0(m%n_dof))
+      call band_init(kb, m%n_dof, half_band, half_band, alloc_msg)
+      if (len(alloc_msg) > 0) then
+         rec%status = run_out_of_memory
+         rec%message = 'in pull, after the split: '//alloc_msg
+         return
+      end if
       s%u1 = s%u
       call assemble(m, s, ld, kb, r0, f_scale, pnewdt)
       rec%assemblies = rec%assemblies + 1

@@ -5,6 +5,8 @@
 !> The matrix is non-symmetric in general (friction), so the LU of dgbtrf.
 module band
    use kinds, only: dp
+   use errors, only: alloc_message
+   use text, only: itoa
    implicit none
    private
    public :: band_matrix, band_init, band_zero, band_add, band_fix_dof, &
@@ -32,16 +34,31 @@ module band
 contains
 
    !> BAND_INIT: allocate an n x n band matrix with kl sub- and ku super-diagonals.
-   !>  a   [out] the matrix, zeroed
+   !>  a       [out] the matrix, zeroed
    !>  n, kl, ku [in] order and bandwidths (n >= 1, 0 <= kl, ku < n)
-   subroutine band_init(a, n, kl, ku)
+   !>  errmsg  [out] optional: '' or, when the allocation failed, the
+   !>                message (errors' alloc_message; a is then empty);
+   !>                without it a failed allocation stops the program
+   subroutine band_init(a, n, kl, ku, errmsg)
       type(band_matrix), intent(out) :: a
       integer, intent(in) :: n, kl, ku
+      character(len=:), allocatable, intent(out), optional :: errmsg
+      integer :: stat
       a%n = n
       a%kl = min(kl, n - 1)
       a%ku = min(ku, n - 1)
       a%ldab = 2*a%kl + a%ku + 1
-      allocate (a%ab(a%ldab, n), a%ipiv(n))
+      if (present(errmsg)) then
+         errmsg = ''
+         allocate (a%ab(a%ldab, n), a%ipiv(n), stat=stat)
+         if (stat /= 0) then
+            errmsg = alloc_message('the band matrix of '//itoa(n)//' equations', &
+                                   8.0_dp*real(a%ldab + 1, dp)*real(n, dp))
+            return
+         end if
+      else
+         allocate (a%ab(a%ldab, n), a%ipiv(n))
+      end if
       a%ab = 0.0_dp
    end subroutine band_init
 

@@ -44,7 +44,7 @@ module deck
    use errors, only: error_list, warn
    use text, only: lower, num, itoa, file_exists
    use deck_checks, only: check_real, check_yield, check_int, check_choice, check_profile, &
-                          check_text_length, fail, at, is_positive
+                          check_text_length, check_text_chars, control_char_at, fail, at, is_positive
    use bead_builder, only: bead_a_over_h
    use mesh, only: zone_counts, neck_half_width
    implicit none
@@ -241,6 +241,18 @@ contains
       ! &control
       call check_text_length(errs, at(p, 'control', 'title'), d%title)
       call check_text_length(errs, at(p, 'control', 'output_dir'), d%output_dir)
+      ! control characters (issue 28, item 8): every text variable
+      call check_text_chars(errs, at(p, 'control', 'title'), d%title)
+      call check_text_chars(errs, at(p, 'control', 'output_dir'), d%output_dir)
+      call check_text_chars(errs, at(p, 'control', 'tearing_criterion'), d%tearing_criterion)
+      call check_text_chars(errs, at(p, 'sheet', 'left_edge'), d%left_edge)
+      call check_text_chars(errs, at(p, 'sheet', 'normal_stress'), d%normal_stress)
+      call check_text_chars(errs, at(p, 'material', 'model'), d%model)
+      call check_text_chars(errs, at(p, 'material', 'hardening'), d%hardening)
+      call check_text_chars(errs, at(p, 'material', 'curve_file'), d%curve_file)
+      call check_text_chars(errs, at(p, 'tools', 'bead'), d%bead)
+      call check_text_chars(errs, at(p, 'tools', 'upper_profile'), d%upper_profile)
+      call check_text_chars(errs, at(p, 'tools', 'lower_profile'), d%lower_profile)
       call check_real(errs, at(p, 'control', 'tearing_length'), d%tearing_length, lo=0.0_dp)
       call check_choice(errs, at(p, 'control', 'tearing_criterion'), d%tearing_criterion, &
                         [character(len=16) :: 'load_maximum', 'section'])
@@ -331,9 +343,10 @@ contains
          if (len_trim(d%curve_file) == 0) then
             call fail(errs, at(p, 'material', 'curve_file'), &
                       "must name a file when hardening = 'table'")
-         else if (.not. file_exists(d%curve_file)) then
-            call fail(errs, at(p, 'material', 'curve_file'), &
-                      "file '"//trim(d%curve_file)//"' not found")
+         else if (control_char_at(d%curve_file) == 0) then
+            ! (a name with a control character is refused above)
+            if (.not. file_exists(d%curve_file)) call fail(errs, at(p, 'material', 'curve_file'), &
+                                                            "file '"//trim(d%curve_file)//"' not found")
          end if
       end select
       if (d%hardening /= 'table' .and. len_trim(d%curve_file) > 0) &

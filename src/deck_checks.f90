@@ -11,7 +11,7 @@ module deck_checks
    implicit none
    private
    public :: check_real, check_yield, check_int, check_choice, check_profile, check_text_length, &
-             fail, at, is_positive
+             check_text_chars, control_char_at, fail, at, is_positive
 
 contains
 
@@ -116,6 +116,7 @@ contains
       integer :: k
 
       if (any(choices == value)) return
+      if (control_char_at(value) > 0) return   ! reported by check_text_chars
       list = ''
       do k = 1, size(choices)
          if (k > 1) list = list//', '
@@ -136,6 +137,8 @@ contains
 
       if (len_trim(path) == 0) then
          call fail(errs, ctx, "must name a file when bead = 'profile'")
+      else if (control_char_at(path) > 0) then
+         return   ! reported by check_text_chars (the C library would cut the name at a NUL)
       else if (.not. file_exists(path)) then
          call fail(errs, ctx, "file '"//trim(path)//"' not found")
       end if
@@ -154,6 +157,69 @@ contains
       if (len_trim(s) >= len(s)) call fail(errs, ctx, 'is too long (at most '// &
                                            itoa(len(s) - 1)//' characters)')
    end subroutine check_text_length
+
+   !> check_text_chars -- reject a text value holding a control character
+   !> (codes 0-31 and 127: NUL, a line feed, an escape, ...).  Such a byte
+   !> would be copied into summary.txt and the .dat headers (a NUL makes
+   !> grep call them binary) or cut a file name short at the C library.
+   !> A tab is one too: read_deck has already turned the title's tabs into
+   !> blanks, so a tab is refused only in a file name or a choice.
+   !>
+   !> errs   [in,out] gets a message naming the character and its place.
+   !> ctx    [in]     see at.
+   !> s      [in]     the text variable.
+   subroutine check_text_chars(errs, ctx, s)
+      type(error_list), intent(inout) :: errs
+      character(len=*), intent(in) :: ctx
+      character(len=*), intent(in) :: s
+
+      integer :: k, code
+
+      k = control_char_at(s)
+      if (k == 0) return
+      code = iachar(s(k:k))
+      call fail(errs, ctx, 'holds a control character, code '//itoa(code)//' ('//control_name(code)// &
+                '), at character '//itoa(k)//': text values may hold printable characters only'// &
+                ' (a tab is read as a blank in the title)')
+   end subroutine check_text_chars
+
+   !> control_char_at -- the position of the first control character
+   !> (codes 0-31 and 127) of s, 0 if there is none.
+   pure function control_char_at(s) result(k)
+      character(len=*), intent(in) :: s
+      integer :: k
+
+      integer :: code
+
+      do k = 1, len(s)
+         code = iachar(s(k:k))
+         if (code < 32 .or. code == 127) return
+      end do
+      k = 0
+   end function control_char_at
+
+   !> control_name -- the usual name of a control character's code.
+   pure function control_name(code) result(name)
+      integer, intent(in) :: code
+      character(len=:), allocatable :: name
+
+      select case (code)
+      case (0)
+         name = 'NUL'
+      case (9)
+         name = 'tab'
+      case (10)
+         name = 'line feed'
+      case (13)
+         name = 'carriage return'
+      case (27)
+         name = 'escape'
+      case (127)
+         name = 'DEL'
+      case default
+         name = 'control-'//achar(code + 64)
+      end select
+   end function control_name
 
    !> fail -- append '<ctx>: <what>' to an error list.
    !>

@@ -89,6 +89,11 @@ contains
          call read_group(d, trim(group_names(g)), path, found(g), errs)
       end do
 
+      ! a tab in the title reads as a blank; any other control character
+      ! in a text value is refused by validate_deck (issue 28, item 8)
+      do g = 1, len_trim(d%title)
+         if (d%title(g:g) == achar(9)) d%title(g:g) = ' '
+      end do
       d%left_edge = lower(adjustl(d%left_edge))
       d%normal_stress = lower(adjustl(d%normal_stress))
       d%tearing_criterion = lower(adjustl(d%tearing_criterion))

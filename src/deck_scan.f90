@@ -127,7 +127,10 @@ contains
                i = i + 1
                cycle
             end if
-            if (iachar(c) < 32) c = ' '
+            ! a control character separates like a blank; inside quotes a
+            ! line end is a blank too (text continued on the next line), any
+            ! other is kept, for validate_deck to refuse (issue 28, item 8)
+            if (iachar(c) < 32 .and. (quote == ' ' .or. c == achar(10) .or. c == achar(13))) c = ' '
             nb = nb + 1
             body(nb:nb) = c
          end if

@@ -7,14 +7,14 @@
 program drawbead
    use kinds, only: dp, output_unit, error_unit
    use errors, only: error_list, report_errors, print_error, warn, exit_ok, exit_input, &
-                     exit_noconvergence, exit_write, exit_interrupted
+                     exit_noconvergence, exit_write, exit_interrupted, exit_memory
    use deck, only: deck_type
    use deck_reader, only: read_deck, echo_deck, list_variables
    use setup, only: setup_run
    use controls, only: controls_type
    use model, only: model_type, state_type, state_init
    use record, only: run_record, run_record_init, run_ok, run_no_convergence, run_interrupted, &
-                     run_write_failed, neck_record, split_note
+                     run_write_failed, run_out_of_memory, neck_record, split_note
    use mesh, only: neck_zone
    use analysis, only: run_phase
    use text, only: itoa
@@ -89,6 +89,9 @@ program drawbead
    case (run_interrupted)
       call print_error(trim(rec%message), 'run_phase')
       call finish('interrupted (results so far kept)', exit_interrupted)
+   case (run_out_of_memory)
+      call print_error(trim(rec%message), 'memory')
+      call finish('out of memory (results so far kept)', exit_memory)
    case default
       call print_error(trim(rec%message), 'output')
       call finish('a result file could not be written', exit_write)
@@ -116,13 +119,21 @@ contains
       type(run_record), intent(out) :: rec
       character(len=*), intent(out) :: errmsg
       type(output_files) :: out
-      call state_init(m, s)
+      character(len=:), allocatable :: alloc_msg
       call run_record_init(rec)
       rec%neck = neck
       call open_outputs(dir, trim(ctl%title), out, errmsg)
       if (len_trim(errmsg) == 0 .and. ctl%snapshot_every_over_h > 0.0_dp) &
          call open_snapshots(out, trim(ctl%title), ctl%snapshot_every_over_h, errmsg)
       if (len_trim(errmsg) > 0) return
+      ! the state's histories: the largest arrays of a run (issue 28, item 6)
+      call state_init(m, s, alloc_msg)
+      if (len(alloc_msg) > 0) then
+         rec%status = run_out_of_memory
+         rec%message = alloc_msg
+         call close_outputs(out)
+         return
+      end if
       if (m%has_tools .and. m%lock_depth > 0.0_dp) then
          call run_phase(m, ctl, s, 'lock', 0.0_dp, m%lock_depth, out, rec)
       end if
@@ -209,7 +220,7 @@ contains
       call write_summary(trim(ctl1%output_dir)//'/summary.txt', m1, s1, ctl1, rec1, t1 - t0, ios1, iomsg1)
       if (ios1 /= 0) call stop_in_first_pass(m, ctl, neck, run_write_failed, 'cannot write '//iomsg1, rec1%assemblies)
       select case (rec1%status)
-      case (run_interrupted, run_write_failed)
+      case (run_interrupted, run_write_failed, run_out_of_memory)
          call stop_in_first_pass(m, ctl, neck, rec1%status, trim(rec1%message), rec1%assemblies)
       case (run_no_convergence)
          ! past the deck's own pull the first pass only looked for a late
@@ -260,7 +271,8 @@ contains
    !>  m           [in] the model of the deck's uniform mesh
    !>  ctl         [in] the controls of the run proper
    !>  neck        [in] the neck record so far
-   !>  status      [in] run_interrupted, run_write_failed or run_no_convergence
+   !>  status      [in] run_interrupted, run_write_failed, run_no_convergence or
+   !>                   run_out_of_memory
    !>  message     [in] why
    !>  assemblies  [in] the first pass's assemblies
    subroutine stop_in_first_pass(m, ctl, neck, status, message, assemblies)
@@ -273,8 +285,9 @@ contains
       type(run_record) :: rec0
       integer :: ios0
       character(len=:), allocatable :: iomsg0
-      character(len=:), allocatable :: kept
-      call state_init(m, s0)
+      character(len=:), allocatable :: kept, alloc_msg
+      ! (the flat sheet; with no memory for it the summary says so too)
+      call state_init(m, s0, alloc_msg)
       call run_record_init(rec0)
       rec0%status = status
       rec0%message = message
@@ -289,6 +302,9 @@ contains
       case (run_no_convergence)
          call print_error(message, 'run_phase')
          call finish('no convergence in the first pass of refine_neck'//kept, exit_noconvergence)
+      case (run_out_of_memory)
+         call print_error(message, 'memory')
+         call finish('out of memory in the first pass of refine_neck'//kept, exit_memory)
       case default
          call print_error(message, 'output')
          call finish('a result file of the first pass of refine_neck could not be written', exit_write)
@@ -421,8 +437,10 @@ contains
          stop exit_noconvergence
       case (exit_write)
          stop exit_write
-      case default
+      case (exit_interrupted)
          stop exit_interrupted
+      case default
+         stop exit_memory
       end select
    end subroutine finish
 end program drawbead

@@ -10,12 +10,12 @@
 !> status, and only the main program stops, with one of the exit codes
 !> below.  The module holds no state; every list belongs to its caller.
 module errors
-   use kinds, only: error_unit
+   use kinds, only: dp, error_unit
    implicit none
    private
-   public :: exit_ok, exit_input, exit_noconvergence, exit_write, exit_interrupted
+   public :: exit_ok, exit_input, exit_noconvergence, exit_write, exit_interrupted, exit_memory
    public :: error_message, error_list
-   public :: add_error, report_errors, warn, print_error
+   public :: add_error, report_errors, warn, print_error, alloc_message
 
    !> Exit status of the program: success.
    integer, parameter :: exit_ok = 0
@@ -31,6 +31,12 @@ module errors
    !> Exit status of the program: SIGTERM or SIGINT stopped the run at a
    !> converged increment (everything so far on disk, status = interrupted).
    integer, parameter :: exit_interrupted = 4
+   !> Exit status of the program: an allocation of the run's large arrays
+   !> (the state and histories, the band matrix, a phase's or a split's
+   !> work arrays) failed although the set-up's memory estimate let the
+   !> mesh through; the message names the arrays and their size (the
+   !> results so far are kept).
+   integer, parameter :: exit_memory = 5
 
    !> One message of any length.
    type :: error_message
@@ -111,6 +117,26 @@ contains
       write (error_unit, '(a)') '*ERROR* '//prefix(caller)//trim(msg)
       flush (error_unit)
    end subroutine print_error
+
+   !> alloc_message -- the message of a failed allocation: 'cannot allocate
+   !> <what> (<size> MiB): out of memory ...'.  (gfortran 12's errmsg of an
+   !> allocate that the system refuses says "Attempt to allocate an
+   !> allocated object": it is not passed on.)
+   !>
+   !> what    [in] the arrays, in words ('the band matrix of 80004
+   !>              equations').
+   !> bytes   [in] their size in bytes (as a real: it may pass huge(0)).
+   pure function alloc_message(what, bytes) result(msg)
+      character(len=*), intent(in) :: what
+      real(dp), intent(in) :: bytes
+      character(len=:), allocatable :: msg
+
+      character(len=32) :: buf
+
+      write (buf, '(f0.1)') bytes/1024.0_dp**2
+      msg = 'cannot allocate '//what//' ('//trim(buf)//' MiB): out of memory (the address-space '// &
+            'limit, ulimit -v, or the machine); give fewer elements or thickness points, or more memory'
+   end function alloc_message
 
    !> prefix -- '<caller>: ', or '' without a caller.
    pure function prefix(caller) result(p)

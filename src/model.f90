@@ -9,6 +9,8 @@ module model
    use element, only: n_gp
    use contact, only: n_chist, ich_position
    use material_law, only: material_law_type, max_load_strain
+   use errors, only: alloc_message
+   use text, only: itoa
    implicit none
    private
    public :: model_type, state_type, load_type, model_init, state_init, load_init, &
@@ -109,14 +111,41 @@ contains
    end subroutine model_init
 
    !> STATE_INIT: undeformed, stress-free state.
-   subroutine state_init(m, s)
+   !>  m       [in]  the model
+   !>  s       [out] the state
+   !>  errmsg  [out] optional: '' or, when an allocation failed, the message
+   !>                naming the arrays and their size (s is then left
+   !>                empty); without it a failed allocation stops the
+   !>                program
+   subroutine state_init(m, s, errmsg)
       type(model_type), intent(in) :: m
       type(state_type), intent(out) :: s
-      integer :: e, ig
-      allocate (s%u(m%n_dof), s%u1(m%n_dof))
-      allocate (s%hn(m%npt, m%n_hist, n_gauss, m%n_el))
-      allocate (s%cn(n_chist, n_gauss, m%n_el, 2))
-      allocate (s%gp(n_gp, n_gauss, m%n_el), s%gpn(n_gp, n_gauss, m%n_el), s%indicator(n_gauss, m%n_el))
+      character(len=:), allocatable, intent(out), optional :: errmsg
+      integer :: e, ig, stat
+      real(dp) :: per_el
+      if (present(errmsg)) then
+         errmsg = ''
+         ! real64 words of the state per element: the histories (converged
+         ! and trial), the contact histories, the Gauss-point results
+         per_el = real(n_gauss, dp)*(2.0_dp*real(m%npt*m%n_hist, dp) + 4.0_dp*real(n_chist, dp) + &
+                                     2.0_dp*real(n_gp, dp) + 1.0_dp)
+         allocate (s%u(m%n_dof), s%u1(m%n_dof), s%hn(m%npt, m%n_hist, n_gauss, m%n_el), &
+                   s%h1(m%npt, m%n_hist, n_gauss, m%n_el), s%cn(n_chist, n_gauss, m%n_el, 2), &
+                   s%c1(n_chist, n_gauss, m%n_el, 2), s%gp(n_gp, n_gauss, m%n_el), &
+                   s%gpn(n_gp, n_gauss, m%n_el), s%indicator(n_gauss, m%n_el), stat=stat)
+         if (stat /= 0) then
+            errmsg = alloc_message('the state of '//itoa(m%n_el)//' elements (material and contact '// &
+                                   'histories hn, h1, cn, c1, station results)', &
+                                   8.0_dp*(per_el*real(m%n_el, dp) + 2.0_dp*real(m%n_dof, dp)))
+            call release(s)
+            return
+         end if
+      else
+         allocate (s%u(m%n_dof), s%u1(m%n_dof))
+         allocate (s%hn(m%npt, m%n_hist, n_gauss, m%n_el))
+         allocate (s%cn(n_chist, n_gauss, m%n_el, 2))
+         allocate (s%gp(n_gp, n_gauss, m%n_el), s%gpn(n_gp, n_gauss, m%n_el), s%indicator(n_gauss, m%n_el))
+      end if
       s%u = 0.0_dp
       s%u1 = 0.0_dp
       do e = 1, m%n_el
@@ -137,6 +166,21 @@ contains
       s%gpn = s%gp
       s%indicator = 1.0_dp
    end subroutine state_init
+
+   !> RELEASE: deallocate every array of a state (an empty state).
+   !>  s  [in,out] the state
+   subroutine release(s)
+      type(state_type), intent(inout) :: s
+      if (allocated(s%u)) deallocate (s%u)
+      if (allocated(s%u1)) deallocate (s%u1)
+      if (allocated(s%hn)) deallocate (s%hn)
+      if (allocated(s%h1)) deallocate (s%h1)
+      if (allocated(s%cn)) deallocate (s%cn)
+      if (allocated(s%c1)) deallocate (s%c1)
+      if (allocated(s%gp)) deallocate (s%gp)
+      if (allocated(s%gpn)) deallocate (s%gpn)
+      if (allocated(s%indicator)) deallocate (s%indicator)
+   end subroutine release
 
    !> LOAD_INIT: nothing fixed, no loads.
    subroutine load_init(m, ld)

@@ -7,13 +7,13 @@ module record
    implicit none
    private
    public :: run_record, run_record_init, record_pull, record_lock, neck_record, split_record, split_note
-   public :: run_ok, run_no_convergence, run_interrupted, run_write_failed
+   public :: run_ok, run_no_convergence, run_interrupted, run_write_failed, run_out_of_memory
 
    !> run_record%status: the run went on to its end (or stopped at tearing);
    !> an increment could not converge; SIGTERM or SIGINT stopped it; a
-   !> result file could not be written.
+   !> result file could not be written; an allocation failed.
    integer, parameter :: run_ok = 0, run_no_convergence = 2, run_interrupted = 3, &
-                         run_write_failed = 4
+                         run_write_failed = 4, run_out_of_memory = 5
 
    !> The neck's refined zone (&sheet refine_neck, docs/theory.md §7.5):
    !> refinement is 'off' (not asked for), 'first' (this is the first pass
@@ -113,6 +113,13 @@ contains
    subroutine run_record_init(rec)
       type(run_record), intent(out) :: rec
       allocate (rec%pull_delta(1024), rec%pull_force(1024), rec%lock_lift(1024), rec%lock_tension(1024))
+      ! zeros, not whatever the heap held: a summary of a run with no pull
+      ! row still forms pull_force(1)/(E h) (a denormal there raised the
+      ! underflow flag the checked build notes)
+      rec%pull_delta = 0.0_dp
+      rec%pull_force = 0.0_dp
+      rec%lock_lift = 0.0_dp
+      rec%lock_tension = 0.0_dp
    end subroutine run_record_init
 
    !> RECORD_PULL: append (delta, N) to the pull history, growing it as needed.

@@ -25,6 +25,8 @@
 !> next increment (analysis's refine_at_exit).
 module remesh
    use kinds, only: dp
+   use errors, only: alloc_message
+   use text, only: itoa
    use hermite, only: n_gauss, gauss_xi, hermite_shape
    use mesh, only: dofs_per_node, element_dofs, node_dof, dof_v, dof_v_slope, dof_w, dof_w_slope
    use element, only: element_gradients, v_dofs, w_dofs
@@ -179,19 +181,40 @@ contains
    !>  m       [in,out] the model: x, n_el, n_nodes, n_dof of the split mesh
    !>  s       [in,out] the converged state, mapped to the split mesh
    !>  pieces  [in]     m%n_el parts per element, >= 1
-   subroutine split_elements(m, s, pieces)
+   !>  errmsg  [out]    optional: '' or, when the split mesh's arrays could
+   !>                   not be allocated, the message naming them and their
+   !>                   size (m and s are then unchanged); without it a
+   !>                   failed allocation stops the program
+   subroutine split_elements(m, s, pieces, errmsg)
       type(model_type), intent(inout) :: m
       type(state_type), intent(inout) :: s
       integer, intent(in) :: pieces(:)
-      real(dp), allocatable :: xn(:), un(:), hn(:, :, :, :), cn(:, :, :, :), gpn(:, :, :), ind(:, :)
+      character(len=:), allocatable, intent(out), optional :: errmsg
+      real(dp), allocatable :: xn(:), un(:), u1n(:), hn(:, :, :, :), h1n(:, :, :, :), cn(:, :, :, :), &
+                               c1n(:, :, :, :), gpn(:, :, :), gpt(:, :, :), ind(:, :)
       real(dp) :: le, lf, xi, w, ulf(8), g(4), gm(4, 8), eps, rho, deps(4), drho(4), &
                   d2eps(4, 4), d2rho(4, 4), nv(4), dn(4), d2n(4), pos(2), shifts(2), d, nrm(2), curv, t(2)
-      integer :: e, f, j, ig, i1, i2, it, n_new, seg
+      integer :: e, f, j, ig, i1, i2, it, n_new, seg, stat
       n_new = sum(pieces)
-      allocate (xn(n_new + 1), un(dofs_per_node*(n_new + 1)))
+      ! every array of the split mesh at once, before anything is changed
+      allocate (xn(n_new + 1), un(dofs_per_node*(n_new + 1)), u1n(dofs_per_node*(n_new + 1)), &
+                hn(size(s%hn, 1), size(s%hn, 2), n_gauss, n_new), h1n(size(s%hn, 1), size(s%hn, 2), n_gauss, n_new), &
+                cn(size(s%cn, 1), n_gauss, n_new, 2), c1n(size(s%cn, 1), n_gauss, n_new, 2), &
+                gpn(size(s%gpn, 1), n_gauss, n_new), gpt(size(s%gpn, 1), n_gauss, n_new), ind(n_gauss, n_new), &
+                stat=stat)
+      if (present(errmsg)) errmsg = ''
+      if (stat /= 0) then
+         if (present(errmsg)) then
+            errmsg = alloc_message('the state of the split mesh ('//itoa(n_new)//' elements)', 8.0_dp* &
+                                   (real(n_gauss, dp)*real(n_new, dp)*(2.0_dp*real(size(s%hn, 1)*size(s%hn, 2), dp) &
+                                    + 4.0_dp*real(size(s%cn, 1), dp) + 2.0_dp*real(size(s%gpn, 1), dp) + 1.0_dp) &
+                                    + 3.0_dp*real(dofs_per_node*(n_new + 1), dp)))
+            return
+         end if
+         error stop 'split_elements: cannot allocate the split mesh (out of memory)'
+      end if
       xn = split_nodes(m%x, pieces)
       un = split_field(m%x, pieces, s%u)
-      allocate (hn(size(s%hn, 1), size(s%hn, 2), n_gauss, n_new), cn(size(s%cn, 1), n_gauss, n_new, 2))
       gpn = split_stations(pieces, s%gpn)
       ind = reshape(split_stations(pieces, reshape(s%indicator, [1, n_gauss, m%n_el])), [n_gauss, n_new])
       shifts = [0.0_dp, s%shift]
@@ -243,14 +266,19 @@ contains
       m%n_el = n_new
       m%n_nodes = n_new + 1
       m%n_dof = dofs_per_node*m%n_nodes
-      s%u = un
-      call move_alloc(un, s%u1)
-      s%h1 = hn
+      ! (trial copies into the arrays allocated above: no allocation here)
+      u1n = un
+      call move_alloc(un, s%u)
+      call move_alloc(u1n, s%u1)
+      h1n = hn
       call move_alloc(hn, s%hn)
-      s%c1 = cn
+      call move_alloc(h1n, s%h1)
+      c1n = cn
       call move_alloc(cn, s%cn)
-      s%gp = gpn
+      call move_alloc(c1n, s%c1)
+      gpt = gpn
       call move_alloc(gpn, s%gpn)
+      call move_alloc(gpt, s%gp)
       call move_alloc(ind, s%indicator)
    end subroutine split_elements
 

@@ -4,7 +4,8 @@ module summary
    use controls, only: controls_type
    use section, only: ih_zbar
    use model, only: model_type, state_type
-   use record, only: run_record, run_ok, run_no_convergence, run_interrupted, run_write_failed
+   use record, only: run_record, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
+                     run_out_of_memory
    use energy, only: energy_totals
    use output, only: write_text_file
    use text, only: itoa
@@ -113,6 +114,8 @@ contains
          status = 'interrupted'
       else if (rec%status == run_write_failed) then
          status = 'write_failed'
+      else if (rec%status == run_out_of_memory) then
+         status = 'out_of_memory'
       else if (rec%torn .and. ctl%tearing_criterion == 'load_maximum') then
          status = 'torn'
       else if (rec%localized) then
@@ -121,7 +124,10 @@ contains
          status = 'completed'
       end if
       call steady_force(rec, h, fsteady, steady_at, steady)
-      thinning = 1.0_dp - minval(s%hn(m%npt, ih_zbar, :, :) - s%hn(1, ih_zbar, :, :))/h
+      ! (a state that could not be allocated, status out_of_memory: the
+      ! flat, unloaded sheet)
+      thinning = 0.0_dp
+      if (allocated(s%hn)) thinning = 1.0_dp - minval(s%hn(m%npt, ih_zbar, :, :) - s%hn(1, ih_zbar, :, :))/h
       call add(text, '# drawbead summary: '//trim(ctl%title))
       call add(text, 'status = '//trim(status))
       call add(text, 'localization_phase = '// &
@@ -167,7 +173,8 @@ contains
       call put(text, 'fold_curvature', ctl%fold_curvature, .true.)
       call put(text, 'lock_force_over_Eh', rec%lock_force/eh, m%has_tools)
       call put(text, 'peak_force_over_Eh', rec%peak_force/eh, rec%n_pull > 0)
-      call put(text, 'final_force_over_Eh', rec%pull_force(max(rec%n_pull, 1))/eh, rec%n_pull > 0)
+      call put(text, 'final_force_over_Eh', merge(rec%pull_force(max(rec%n_pull, 1)), 0.0_dp, rec%n_pull > 0)/eh, &
+               rec%n_pull > 0)
       call put(text, 'steady_force_over_Eh', fsteady/eh, steady)
       call put(text, 'steady_reached_at_delta_over_h', steady_at/h, steady)
       call put(text, 'final_lift_over_Eh', rec%last_lift/eh, rec%n_pull > 0 .and. m%has_tools)
@@ -177,7 +184,8 @@ contains
                               0.0_dp, rec%n_pull > 0)/h, .true.)
       ! energy balance: external work + normal-stress work = elastic + plastic
       ! + penalty + friction (energy_totals)
-      call energy_totals(m, s, energy)
+      energy = 0.0_dp
+      if (allocated(s%hn)) call energy_totals(m, s, energy)
       call put(text, 'energy_external_work', rec%work, .true.)
       call put(text, 'energy_elastic', energy(1), .true.)
       call put(text, 'energy_plastic', energy(2), .true.)

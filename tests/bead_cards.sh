@@ -353,6 +353,18 @@ rc=$?
 check "a sweep not over lock_depth is a usage error (exit 2, got $rc) ..." test "$rc" -eq 2
 check "... found before any companion runs" test ! -e "$tmp/nolock/frictionless/runs"
 
+# a run that tore keeps its point: tearing is a result (issue 28, item 9)
+cp -r "$sweep" "$tmp/torn"
+# (the status comes from the run's summary.txt: scripts/lib.sh's run_status)
+sed -i 's/^status = .*/status = torn/' "$tmp/torn/runs/case_0002/summary.txt"
+scripts/bead_curves.sh --bin "$prog" -o "$tmp/torn/curves" "$tmp/torn" >/dev/null 2>"$tmp/e4.err"
+rc=$?
+check "bead_curves.sh with a torn run exits 0 (got $rc)" test "$rc" -eq 0
+check "... keeps every depth of the torn run's combination" \
+    test "$(cat "$tmp"/torn/curves/restraining_total*.txt | grep -vc '^#')" -eq 9
+check "... and says where the sheet localized or tore" grep -q 'localized (may tear) at lock_depth' \
+    "$tmp"/torn/curves/restraining_total*.txt
+
 if ((failures > 0)); then
     echo "--- stderr:"
     cat "$tmp/a.err" "$tmp/e.err"

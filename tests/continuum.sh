@@ -22,7 +22,11 @@
 #  c) the model (scripts/continuum_model.py, no ccx needed) of that deck
 #     locked short of full lock (lock_depth = 3 mm, as the binder-gap case
 #     input/cc_fig9c_beadA_steel_free_gap.nml): the lower tool rises by
-#     the deck's lock_depth while locking and is held there while pulling.
+#     the deck's lock_depth while locking and is held there while pulling;
+#  d) (no ccx needed) scripts/continuum_results.py's check that the
+#     continuum is a sheet lying in the tools: the flat sheet is, the
+#     sheet raised by 3h or stretched by 3 is not, and compare says so and
+#     leaves the numbers out; b) is a sheet in the tools.
 # a) and b) are skipped (ok) when ccx is not installed. Exit 0 if all
 # pass, 1 otherwise.
 set -u
@@ -57,6 +61,48 @@ else
     echo "FAIL a deck's lock_depth (3 mm) is not the continuum model's rise of the lower tool"
     fail=1
 fi
+
+# d) is the continuum a sheet lying in the tools? (issue 28, item 12: the
+# stepped bead's continuum stood 2-5h above the tools with ln(lambda) =
+# 3.6, and comparison.txt compared that without a word)
+if python3 - "$work/short/ccx" "$work" <<'PY'
+import json, sys
+sys.path.insert(0, 'scripts')
+import continuum_results as cr
+info = json.load(open(sys.argv[1] + '/continuum_model.json'))
+h, n_mid = info['thickness'], len(info['mid'])
+ids = [int(k) for k in info['node_x']]
+flat = {'U': {n: (0.0, 0.0) for n in ids}}
+raised = {'U': {n: (0.0, 3.0 * h) for n in ids}}
+X = {int(k): v for k, v in info['node_x'].items()}
+stretched = {'U': {n: (X[n] * 2.0, 0.0) for n in ids}}
+bad = 0
+for what, got, want in (
+        ('the flat sheet at the start lies in the tools', cr.state_problem(info, flat, 0.0), None),
+        ('a sheet raised by 3h stands above the upper tool', cr.state_problem(info, raised, 0.5),
+         'stands 3.0h above the upper tool'),
+        ('a stretch of 3 is an absurd strain', cr.state_problem(info, stretched, 0.0), 'an absurd strain')):
+    ok = got is None if want is None else want in (got or '')
+    print(('ok   ' if ok else 'FAIL ') + what + ('' if ok else ': %r' % got))
+    bad += not ok
+# compare: a continuum state that went wrong is said, not compared silently
+w = sys.argv[2]
+open(w + '/p.txt', 'w').write('# p\npeak_strain_lock = 7.5e-2\n')
+open(w + '/c.txt', 'w').write('# c\npeak_strain_lock = none\ncontinuum_state = not a sheet in the tools '
+                              'from time 0.9: the sheet at s = -24.9h stands 2.3h above the upper tool\n')
+import io, contextlib
+buf = io.StringIO()
+with contextlib.redirect_stdout(buf):
+    cr.compare(w + '/p.txt', w + '/c.txt')
+out = buf.getvalue()
+ok = ('# continuum: not a sheet in the tools from time 0.9' in out and 'left out' in out
+      and 'continuum_state' not in out)
+print(('ok   ' if ok else 'FAIL ') + 'compare says the continuum left the tools and leaves its numbers out'
+      + ('' if ok else ':\n' + out))
+bad += not ok
+sys.exit(1 if bad else 0)
+PY
+then :; else fail=1; fi
 
 if ! command -v ccx >/dev/null 2>&1; then
     echo "ok   skipped: ccx (CalculiX) is not installed"
@@ -123,6 +169,9 @@ lock = 4.73964 / 0.762
 s = rows(w + '/bead_a_short/strain_lock.dat')
 mid = min(s, key=lambda x: abs(x[0]))
 check(abs(mid[2] - lock) < 0.1, 'bead A: y/h at s = 0 after locking %.4f, lock depth %.4f' % (mid[2], lock))
+state = [l.split(' = ', 1)[1].strip() for l in open(w + '/bead_a_short/continuum_summary.txt')
+         if l.startswith('continuum_state = ')]
+check(state == ['sheet in the tools'], 'bead A: the continuum is a sheet lying in the tools (%s)' % state)
 cl, pl = rows(w + '/bead_a_short/lock.dat'), rows(w + '/bead_a_short/program/lock.dat')
 
 

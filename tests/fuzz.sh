@@ -34,9 +34,9 @@
 #        - exit 0 with out/summary.txt valid: one `status = ` line saying
 #          completed, localized or torn, every `key = value` a finite number,
 #          `none` or a known word (a status or a phase);
-#        - exit 1, 2, 3 or 4 with an `*ERROR*` line on stderr (and, with 2
-#          or 4, a summary, if any, valid as above, its status
-#          no_convergence or interrupted);
+#        - exit 1, 2, 3, 4 or 5 with an `*ERROR*` line on stderr (and, with
+#          2, 4 or 5, a summary, if any, valid as above, its status
+#          no_convergence, interrupted or out_of_memory);
 #      and never: a signal (exit > 128), a hang (timeout's 124, or killed
 #      at the CPU limit: SIGKILL 137, SIGXCPU 152), another
 #      exit status, or a Fortran runtime error or backtrace on stderr
@@ -66,7 +66,7 @@ top=$PWD
 # Running one deck and judging its outcome
 # ---------------------------------------------------------------------------
 runtime_error_re='Fortran runtime error|Error termination|Backtrace|Program received signal|SIGSEGV|Floating-point exception'
-summary_words='completed|localized|torn|no_convergence|interrupted|write_failed|running|lock|pull|none|load_maximum|section|off|zone|first|yes|no'
+summary_words='completed|localized|torn|no_convergence|interrupted|write_failed|out_of_memory|running|lock|pull|none|load_maximum|section|off|zone|first|yes|no'
 
 # summary_problem FILE: prints why FILE is not a valid summary (nothing if it is)
 summary_problem() {
@@ -119,13 +119,14 @@ verdict() {
         else
             echo ok
         fi
-    elif ((rc >= 1 && rc <= 4)); then
+    elif ((rc >= 1 && rc <= 5)); then
         if ! grep -aqF '*ERROR*' "$err"; then
             echo "FAIL no message: exit $rc without an *ERROR* line on stderr"
-        elif ((rc == 2 || rc == 4)) && [[ -f $summary ]]; then
+        elif ((rc == 2 || rc == 4 || rc == 5)) && [[ -f $summary ]]; then
             problem=$(summary_problem "$summary")
             local want=no_convergence
             ((rc == 4)) && want=interrupted
+            ((rc == 5)) && want=out_of_memory
             if [[ -n $problem ]]; then
                 echo "FAIL bad summary: exit $rc, $problem"
             elif [[ $(summary_status "$summary") != "$want" ]]; then

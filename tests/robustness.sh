@@ -19,7 +19,10 @@
 #    nothing seeks in it (issue 28, item 3);
 #  - input files are bounded: /dev/zero as the deck, a deck larger than
 #    16 MiB or with a line longer than 65536 characters are refused at once
-#    (issue 28, item 4; the curve and profile files: tests/bad_decks.sh).
+#    (issue 28, item 4; the curve and profile files: tests/bad_decks.sh);
+#  - a control character in a text value (a NUL in the title, an escape in
+#    a file name) is refused; a tab in the title reads as a blank, and so
+#    does a line end inside quotes (issue 28, item 8).
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -87,6 +90,34 @@ expect 1 'larger than 16777216 bytes' 'a deck of 17 MB is refused' -- \
 { cat "$deck"; printf '! %s\n' "$(head -c 70000 /dev/zero | tr '\0' x)"; } >"$work/long.nml"
 expect 1 'line 34: longer than 65536 characters' 'a deck line of 70000 characters is refused' -- \
     timeout -k 2 30 "$bin" "$work/long.nml" -o "$work/long"
+
+# control characters in text values (issue 28, item 8: a NUL in the title
+# was copied into summary.txt and the .dat headers, and grep then called
+# them binary): refused, naming the deck, group and variable; a tab in the
+# title reads as a blank
+printf '&control title = "a\0b" /\n&sheet n_elements = 20 /\n&loading pull_distance = 0.1 /\n' \
+    >"$work/nul.nml"
+expect 1 "group &control, variable title: holds a control character, code 0 (NUL), at character 2" \
+    'a NUL in the title is refused' -- "$bin" "$work/nul.nml" -o "$work/nul"
+printf '&material hardening = "table" curve_file = "c\033.txt" /\n' >"$work/esc.nml"
+expect 1 "group &material, variable curve_file: holds a control character, code 27 (escape)" \
+    'an escape in a file name is refused' -- "$bin" "$work/esc.nml" -o "$work/esc"
+printf '&control title = "two\r\nlines" /\n&loading pull_distance = 0.1 /\n' >"$work/lf.nml"
+expect 0 'TITLE="two  lines"' 'a quoted title continued on the next line reads with blanks' -- \
+    "$bin" "$work/lf.nml" -o "$work/lf"
+printf '&tools bead = "none" upper_profile = "a\tb" /\n' >"$work/tabfile.nml"
+expect 1 "group &tools, variable upper_profile: holds a control character, code 9 (tab)" \
+    'a tab in a file name is refused' -- "$bin" "$work/tabfile.nml" -o "$work/tabfile"
+printf '&control title = "a\tb" /\n&sheet n_elements = 20 /\n&loading pull_distance = 0.1 /\n' \
+    >"$work/tab.nml"
+"$bin" "$work/tab.nml" -o "$work/tab" >"$work/out" 2>&1
+status=$?
+if ((status == 0)) && grep -qx '# drawbead summary: a b' "$work/tab/summary.txt" &&
+    grep -q '^status' "$work/tab/summary.txt"; then
+    ok "a tab in the title reads as a blank (exit 0, summary.txt text)"
+else
+    bad "a tab in the title: exit $status, $(head -n 1 "$work/tab/summary.txt" 2>&1)"
+fi
 
 # the output directory belongs to the run
 mkdir -p "$work/stale"

@@ -19,7 +19,10 @@
 #      four-row table; a sweep with friction=-1 lists that case as
 #      bad_input with the program's message, and exits 1; a variable the
 #      base deck does not set (snapshot_every, from the program's
-#      --list-variables) is added to its group and read by the program
+#      --list-variables) is added to its group and read by the program; a
+#      sweep whose runs tear exits 0, its rows torn, no failure counted;
+#      SIGTERM to a sweep stops its runs (exit 4 each, none left going)
+#      and writes the table of what finished, marked interrupted (exit 143)
 #   d) sweep.sh --slurm: the array range matches the deck count, the
 #      script passes bash -n, one task run by hand gives that deck's
 #      summary, and --collect builds the table (not_run for the others)
@@ -160,6 +163,18 @@ if ((have_gnuplot)); then
         check "figure $png.png drawn" is_png "$tmp/out/figures/$png.png"
     done
     check "no figure for decks that did not run (fig9)" test ! -e "$tmp/out/figures/fig9.png"
+    # each force figure gives E h in N/mm, from the run's own columns
+    # (issue 28: forces were only in N/(E h)); the strain figure's legend
+    # is inside the frame (it sat below the x label)
+    d7=$tmp/out/fig7c_beadB_steel_mu0
+    eh=$(awk '!/^#/ && NF && $2 != 0 { printf "%.0f", $3 / $2; exit }' "$d7/lock.dat")
+    gnuplot -c scripts/plot_lock.gp "$d7/lock.dat::bead B" "$tmp/fig7.svg" 2>/dev/null
+    check "plot_lock.gp: the legend gives E h = $eh N/mm" grep -q "bead B  (E h = $eh N/mm)" "$tmp/fig7.svg"
+    gnuplot -c scripts/plot_pull.gp "$tmp/out/fig6_beadB_steel/pull.dat::bead B" "$tmp/fig8.svg" 2>/dev/null
+    check "plot_pull.gp: the legend gives E h = $eh N/mm" grep -q "bead B  (E h = $eh N/mm)" "$tmp/fig8.svg"
+    check "plot_strain.gp: the legend inside the frame" grep -q "^pkey = 'inside " scripts/plot_strain.gp
+    check "run_paper.sh: Fig. 7's title names its mu = 0.1 curve" \
+        grep -q "Fig. 7  Punch force vs. lock depth, clamped edge, μ = 0 (dashed black: μ = 0.1)" scripts/run_paper.sh
 else
     echo "skip the figures: gnuplot is not installed"
 fi
@@ -231,6 +246,41 @@ check "... added to its group &control" \
     grep -Pzq '&control\n[^/]*\n   snapshot_every = 0\.1\n/' "$tmp/sweepnew/decks/case_0000.nml"
 check "... and read by the program (SNAPSHOT_EVERY=0.1)" \
     grep -q '^ *SNAPSHOT_EVERY= *0\.1000' "$tmp/sweepnew/runs/case_0000/run.log"
+
+# tearing is a result, not a failure (issue 28, item 9: a torn run was
+# counted failed in the table, and the sweep exited 1)
+scripts/sweep.sh --bin "$prog" -j 2 -o "$tmp/sweeptorn" input/strip_tension.nml n_elements=20,30 \
+    >"$tmp/c5.out" 2>"$tmp/c5.err"
+rc=$?
+check "a sweep whose runs tear exits 0 (got $rc)" test "$rc" -eq 0
+check "... its rows say torn" test "$(grep -Ec '^case_000[01] .* torn$' "$tmp/sweeptorn/table.txt")" -eq 2
+check "... and the table counts no failure" grep -q '^# drawbead sweep: 2 cases, 0 failed, 0 not run' "$tmp/sweeptorn/table.txt"
+
+# SIGTERM stops the runs and writes the table of what finished, marked
+# interrupted (issue 28, item 10: sweep.sh exited 143, its runs went on,
+# no table); case_0000 is quick, the other two run for minutes
+printf '&sheet n_elements = 2000 /\n&loading pull_distance = 0.5 initial_increment = 0.001 max_increment = 0.001 /\n' \
+    >"$tmp/slow.nml"
+scripts/sweep.sh --bin "$prog" -j 2 -o "$tmp/sweepint" "$tmp/slow.nml" \
+    pull_distance=0.001,0.4,0.5 >"$tmp/c6.out" 2>"$tmp/c6.err" &
+sweep_pid=$!
+for _ in $(seq 300); do
+    [[ -s $tmp/sweepint/runs/case_0000/exit_status ]] &&
+        grep -qs 'increments = *[1-9]' "$tmp/sweepint/runs/case_0001/summary.txt" &&
+        grep -qs 'increments = *[1-9]' "$tmp/sweepint/runs/case_0002/summary.txt" && break
+    sleep 0.1
+done
+kill -TERM "$sweep_pid"
+wait "$sweep_pid"
+rc=$?
+check "SIGTERM: sweep.sh exits 143 (got $rc)" test "$rc" -eq 143
+check "... no run of the sweep is left going" test -z "$(pgrep -f -- "--output $tmp/sweepint/runs")"
+check "... the stopped runs exited 4 (interrupted)" \
+    test "$(cat "$tmp/sweepint/runs/case_0001/exit_status" "$tmp/sweepint/runs/case_0002/exit_status")" = $'4\n4'
+check "... the table is written, marked interrupted" \
+    grep -q '^# INTERRUPTED: SIGTERM stopped the sweep: 1 of 3 cases finished, 2 stopped, 0 not run' "$tmp/sweepint/table.txt"
+check "... with the finished run's row" grep -Eq '^case_0000 +0\.001 .* completed$' "$tmp/sweepint/table.txt"
+check "... and the stopped runs' rows" test "$(grep -Ec '^case_000[12] .* interrupted$' "$tmp/sweepint/table.txt")" -eq 2
 
 # ---------------------------------------------------------------------------
 # d) sweep.sh --slurm
