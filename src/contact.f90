@@ -8,7 +8,12 @@
 !> per unit reference length (Winkler foundation, k the penalty), where u_T is
 !> the distance slid on the tool since the station's contact began (relative
 !> to the tool, which may move: p_rel = p - (0, shift)) and f the modified
-!> Coulomb law with one reversal (friction module).
+!> Coulomb law with one reversal (friction module).  The coefficient mu is
+!> the friction law's (module friction_law): constant (Coulomb) or a
+!> function of the contact pressure p = k g(d)/lambda_f, the normal force
+!> per unit current length of the face in contact (docs/theory.md §6.1),
+!> lambda_f the face's stretch at the last converged state (lagged, as the
+!> station distances zbar, §3).
 !>
 !> The Heaviside onset of (2.18) is smoothed over a small penetration delta:
 !> the normal pressure is k g(d) with g = d^2/(2 delta) for d < delta and
@@ -26,11 +31,12 @@ module contact
    use tools, only: tool_type
    use tool_distance, only: tool_gap
    use friction, only: friction_law
+   use friction_law, only: friction_law_type
    implicit none
    private
    public :: contact_station, penalty_energy
    public :: n_chist, ich_active, ich_slip, ich_slip_max, ich_sense, ich_position, &
-             ich_dissipation, ich_penetration, ich_traction, ich_hint
+             ich_dissipation, ich_penetration, ich_traction, ich_hint, ich_pressure, ich_mu
 
    !> Layout of a station's contact history column ch(n_chist):
    !> 1 when the station is in contact (trial) or was (converged), else 0
@@ -53,8 +59,10 @@ module contact
    integer, parameter :: ich_traction = 9
    !> the tool piece nearest at the last search (tool_gap's hint; 0 none)
    integer, parameter :: ich_hint = 10
+   !> the contact pressure p, MPa, and the friction coefficient mu(p) in use
+   integer, parameter :: ich_pressure = 11, ich_mu = 12
    !> length of the column
-   integer, parameter :: n_chist = 10
+   integer, parameter :: n_chist = 12
 
 contains
 
@@ -63,8 +71,9 @@ contains
    !>  shift  [in]  the tool's vertical rigid translation (lower tool: H)
    !>  k      [in]  penalty (force per reference length per unit penetration)
    !>  delta  [in]  smoothing length of the contact onset (0: sharp)
-   !>  mu     [in]  friction coefficient
-   !>  eps_f  [in]  regularization length eps of (4.3)
+   !>  fric   [in]  the friction law (its regularization length eps of (4.3))
+   !>  face_stretch [in] the stretch of the sheet's face against this tool
+   !>               at the last converged state (pressure = force/stretch)
    !>  p      [in]  current position of the station
    !>  chn    [in]  converged history column (layout: the ich_* constants)
    !>  ch1    [out] trial history column
@@ -73,12 +82,14 @@ contains
    !>  fn     [out] the normal force k g(d) >= 0 alone (the pressure the
    !>               contact section puts on the sheet's face)
    !>  dfn    [out] d fn / d p = -k g'(d) n
-   pure subroutine contact_station(tool, shift, k, delta, mu, eps_f, p, chn, ch1, f, kf, fn, dfn)
+   pure subroutine contact_station(tool, shift, k, delta, fric, face_stretch, p, chn, ch1, f, kf, &
+                                   fn, dfn)
       type(tool_type), intent(in) :: tool
-      real(dp), intent(in) :: shift, k, delta, mu, eps_f, p(2), chn(:)
+      class(friction_law_type), intent(in) :: fric
+      real(dp), intent(in) :: shift, k, delta, face_stretch, p(2), chn(:)
       real(dp), intent(out) :: ch1(:), f(2), kf(2, 2), fn, dfn(2)
       real(dp) :: prel(2), d, n(2), t(2), curv, ds, sense, ut, fr, dfr, dslip(2), tt, pn, dpn
-      real(dp) :: dut(2), dold, a, utm, trac_old
+      real(dp) :: dut(2), dold, a, utm, trac_old, mu, dmu_dp, pressure, mu_eff
       integer :: seg
       prel = [p(1), p(2) - shift]
       call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg, hint=nint(chn(ich_hint)))
@@ -105,7 +116,13 @@ contains
       kf = -dpn*outer(n, n) + pn*curv*outer(t, t)
       fn = pn
       dfn = -dpn*n
-      if (mu <= 0.0_dp) return
+      pressure = pn/face_stretch
+      ch1(ich_pressure) = pressure
+      if (.not. fric%active()) return
+      call fric%coefficient(pressure, mu, dmu_dp)
+      ch1(ich_mu) = mu
+      ! d(mu(p) pn)/d pn = mu + p dmu/dp (the stretch is lagged)
+      mu_eff = mu + pressure*dmu_dp
       ! friction, integrated from the last converged state to the trial one
       ! like a return mapping (docs/theory.md §6): the slip of the increment
       ! is measured along t from the converged position; d(ds)/dp =
@@ -140,14 +157,14 @@ contains
       ! the largest converged u_T, and u_T is linear along the increment
       ch1(ich_slip_max) = max(utm, ut)
       ch1(ich_sense) = sense
-      call friction_law(ut, utm, eps_f, fr, dfr)
+      call friction_law(ut, utm, fric%eps, fr, dfr)
       tt = mu*pn*fr*sense
       ch1(ich_traction) = tt
       ch1(ich_dissipation) = chn(ich_dissipation) + 0.5_dp*(trac_old + tt)*ds
       f = f - tt*t
       ! d(tt t)/dp = t (mu sense)(fr dpn dd/dp + pn dfr dut) + tt dt/dp,
       ! dd/dp = -n, dt/dp = -curv n t^T
-      kf = kf - mu*sense*outer(t, -fr*dpn*n + pn*dfr*dut) + tt*curv*outer(n, t)
+      kf = kf - sense*outer(t, -mu_eff*fr*dpn*n + mu*pn*dfr*dut) + tt*curv*outer(n, t)
    end subroutine contact_station
 
    !> PENALTY_ENERGY: stored energy k G(d) of a station penetrating by d

@@ -17,7 +17,9 @@
 !>              swift_k, swift_eps0, swift_n, voce_sigma0, voce_q, voce_b,
 !>              curve_file, kinematic_c, kinematic_gamma, thickness_points
 !>   &tools     bead, r1, r2, b1, b2, h1, h2, upper_profile, lower_profile,
-!>              penalty, friction, friction_eps, contact_smoothing
+!>              penalty, friction, friction_eps, contact_smoothing, friction_law,
+!>              friction_file, friction_p_ref, friction_m, friction_mu_min,
+!>              friction_mu_max
 !>   &loading   lock_depth, pull_distance, initial_increment,
 !>              min_increment, max_increment, max_iterations, tolerance,
 !>              max_force_change, squeeze_force_change, step_tolerance
@@ -132,7 +134,13 @@ module deck
       character(len=512) :: upper_profile = ''
       character(len=512) :: lower_profile = ''
       real(dp) :: penalty = 0.045_dp                  ! k h / E
-      real(dp) :: friction = 0.0_dp                   ! mu
+      real(dp) :: friction = 0.0_dp                   ! mu ('coulomb'), mu_ref ('power')
+      character(len=16) :: friction_law = 'coulomb'   ! 'coulomb' | 'table' | 'power'
+      character(len=512) :: friction_file = ''        ! 'table': columns p (MPa), mu
+      real(dp) :: friction_p_ref = unset              ! 'power': p_ref, MPa (required)
+      real(dp) :: friction_m = unset                  ! 'power': m of mu_ref (p/p_ref)^(m-1) (required)
+      real(dp) :: friction_mu_min = 0.0_dp            ! 'power': lower bound of mu
+      real(dp) :: friction_mu_max = 1.0_dp            ! 'power': upper bound of mu
       real(dp) :: friction_eps = 0.0333_dp            ! eps of (4.3), units of h
       real(dp) :: contact_smoothing = 0.0_dp          ! penalty onset smoothed over this penetration, units of h (0: sharp, as the paper)
       ! &loading
@@ -383,6 +391,13 @@ contains
       call check_text_length(errs, at(p, 'tools', 'lower_profile'), d%lower_profile)
       call check_real(errs, at(p, 'tools', 'penalty'), d%penalty, lo=0.0_dp, lo_open=.true.)
       call check_real(errs, at(p, 'tools', 'friction'), d%friction, lo=0.0_dp)
+      call check_choice(errs, at(p, 'tools', 'friction_law'), d%friction_law, &
+                        [character(len=16) :: 'coulomb', 'table', 'power'])
+      call check_text_length(errs, at(p, 'tools', 'friction_file'), d%friction_file)
+      if (d%friction_law /= 'table' .and. len_trim(d%friction_file) > 0) &
+         call warn(at(p, 'tools', 'friction_file')//": ignored unless friction_law = 'table'")
+      if (d%friction_law == 'table' .and. abs(d%friction) > 0.0_dp) &
+         call warn(at(p, 'tools', 'friction')//": ignored with friction_law = 'table' (the table gives mu)")
       call check_real(errs, at(p, 'tools', 'friction_eps'), d%friction_eps, &
                       lo=0.0_dp, lo_open=.true.)
       call check_real(errs, at(p, 'tools', 'contact_smoothing'), d%contact_smoothing, lo=0.0_dp)

@@ -100,6 +100,7 @@ contains
       d%hardening = lower(adjustl(d%hardening))
       d%model = lower(adjustl(d%model))
       d%drawing_direction = lower(adjustl(d%drawing_direction))
+      d%friction_law = lower(adjustl(d%friction_law))
       d%bead = lower(adjustl(d%bead))
       call resolve_defaults(d)
       call validate_deck(d, errs)
@@ -407,8 +408,12 @@ contains
       real(dp) :: r1, r2, b1, b2, h1, h2
       character(len=512) :: upper_profile, lower_profile
       real(dp) :: penalty, friction, friction_eps, contact_smoothing
+      character(len=16) :: friction_law
+      character(len=512) :: friction_file
+      real(dp) :: friction_p_ref, friction_m, friction_mu_min, friction_mu_max
       namelist /tools/ bead, r1, r2, b1, b2, h1, h2, upper_profile, lower_profile, &
-         penalty, friction, friction_eps, contact_smoothing
+         penalty, friction, friction_eps, contact_smoothing, friction_law, friction_file, &
+         friction_p_ref, friction_m, friction_mu_min, friction_mu_max
 
       bead = d%bead
       r1 = d%r1
@@ -423,6 +428,12 @@ contains
       friction = d%friction
       friction_eps = d%friction_eps
       contact_smoothing = d%contact_smoothing
+      friction_law = d%friction_law
+      friction_file = d%friction_file
+      friction_p_ref = d%friction_p_ref
+      friction_m = d%friction_m
+      friction_mu_min = d%friction_mu_min
+      friction_mu_max = d%friction_mu_max
       select case (action)
       case (act_read_text)
          read (text, nml=tools, iostat=ios, iomsg=msg)
@@ -444,6 +455,12 @@ contains
       d%friction = friction
       d%friction_eps = friction_eps
       d%contact_smoothing = contact_smoothing
+      d%friction_law = friction_law
+      d%friction_file = friction_file
+      d%friction_p_ref = friction_p_ref
+      d%friction_m = friction_m
+      d%friction_mu_min = friction_mu_min
+      d%friction_mu_max = friction_mu_max
    end subroutine nml_tools
 
    !> nml_loading -- namelist &loading (arguments as group_io).

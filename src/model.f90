@@ -9,6 +9,7 @@ module model
    use element, only: n_gp
    use contact, only: n_chist, ich_position
    use material_law, only: material_law_type, max_load_strain
+   use friction_law, only: friction_law_type
    use errors, only: alloc_message
    use text, only: itoa
    implicit none
@@ -30,8 +31,7 @@ module model
       type(tool_type) :: tool(2)             ! 1 upper (fixed), 2 lower (moves by H)
       real(dp) :: penalty = 0.0_dp           ! k, N/mm^3 (force per ref length per mm)
       real(dp) :: contact_smoothing = 0.0_dp ! delta, mm: smoothed penalty onset
-      real(dp) :: friction = 0.0_dp          ! mu
-      real(dp) :: friction_eps = 1.0_dp      ! eps of (4.3), mm
+      class(friction_law_type), allocatable :: friction ! the friction law (module friction_law)
       logical :: contact_section = .false.   ! the tools' normal forces load the section (docs/theory.md §12)
       real(dp) :: gradient = 0.0_dp          ! c of the strain-gradient term (1/2) c (d lambda/ds)^2, N mm (0: none)
       ! load schedule: locking to lock_depth, then pulling by pull_distance

@@ -19,6 +19,10 @@ module setup
    use law_j2, only: j2_law_of_deck
    use law_combined, only: combined_law_of_deck
    use law_umat, only: umat_law_of_deck
+   use friction_law, only: friction_law_type
+   use friction_coulomb, only: coulomb_friction
+   use friction_table, only: table_friction_of_deck
+   use friction_power, only: power_friction_of_deck
    use tools, only: tool_type, tool_sample, seg_arc
    use tool_distance, only: tool_gap
    use bead_builder, only: build_rectangular_bead
@@ -84,9 +88,8 @@ contains
       ! contact (2.18)-(2.23): the penalty is given as k h / E, the lengths
       ! in units of h
       m%penalty = d%penalty*d%youngs_modulus/h
-      m%friction = d%friction
+      call friction_of_deck(d, m%friction, errs)
       m%contact_smoothing = d%contact_smoothing*h
-      m%friction_eps = d%friction_eps*h
       m%left_edge_free = d%left_edge == 'free'
       m%contact_section = d%normal_stress == 'contact'
       ! the strain-gradient term (docs/theory.md §12.7): strain_gradient
@@ -138,6 +141,27 @@ contains
          allocate (mat, source=j2_law_of_deck(d, props, ok, errs))
       end select
    end subroutine material_of_deck
+
+   !> FRICTION_OF_DECK: the friction law a deck names (&tools friction_law),
+   !> built by its module, which checks the law's own variables.  This is
+   !> where a friction law is registered: one line per law.
+   !>  d     [in]     the deck
+   !>  fric  [out]    the law
+   !>  errs  [in,out] problems are appended
+   subroutine friction_of_deck(d, fric, errs)
+      type(deck_type), intent(in) :: d
+      class(friction_law_type), allocatable, intent(out) :: fric
+      type(error_list), intent(inout) :: errs
+      select case (trim(d%friction_law))
+      case ('table')
+         allocate (fric, source=table_friction_of_deck(d, errs))
+      case ('power')
+         allocate (fric, source=power_friction_of_deck(d, errs))
+      case default
+         ! 'coulomb', and an unknown name (the deck's error already)
+         allocate (fric, source=coulomb_friction(d%friction, d%friction_eps*d%thickness))
+      end select
+   end subroutine friction_of_deck
 
    !> MATERIAL_CONSTANTS: the UMAT props vector of a deck, the tabulated
    !> curve read from its file for hardening = 'table'.

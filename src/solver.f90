@@ -15,7 +15,7 @@ module solver
    use mesh, only: element_dofs, half_band, node_dof, dof_v_slope, dof_w_slope, is_slope_dof
    use band, only: band_matrix, band_init, band_zero, band_add, band_fix_dof, band_solve
    use element, only: element_internal, v_dofs, w_dofs
-   use section, only: section_localization, section_update_zbar, col_eqps, ih_spd
+   use section, only: section_localization, section_update_zbar, col_eqps, ih_spd, ih_strain
    use model, only: model_type, state_type, load_type
    use contact, only: contact_station, ich_active
    implicit none
@@ -225,8 +225,10 @@ contains
             p(1) = p(1) + m%x(e) + gauss_xi(ig)*le
             pg(:, ig) = p
             do it = 1, 2
+               ! the face against the tool: the top (tool 1) or the bottom
+               ! (tool 2), its converged stretch exp(ln Lambda)
                call contact_station(m%tool(it), shifts(it), m%penalty, m%contact_smoothing, m%friction, &
-                                    m%friction_eps, p, cn(:, ig, it), &
+                                    exp(hn(merge(size(hn, 1), 1, it == 1), ih_strain, ig)), p, cn(:, ig, it), &
                                     c1(:, ig, it), fc(:, ig, it), kc(:, :, ig, it), fn, dfn)
                if (m%contact_section .and. fn > 0.0_dp) then
                   face_force(3 - it, ig) = fn
