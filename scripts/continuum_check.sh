@@ -7,7 +7,9 @@
 #
 #   DECK              a drawbead deck (rectangular or profile tools, or none;
 #                     clamped or free left edge; swift, voce or table
-#                     hardening; r_value = 1; the built-in material)
+#                     hardening; von Mises: r_value = 1 (model 'combined':
+#                     r0 = r90 = 1); model 'j2', or 'combined' with linear
+#                     back stresses, kinematic_gamma = 0)
 #   -o, --output DIR  the results folder (default out/continuum/<deck name>)
 #   --through N       CPE8R elements through the thickness, even (default 4)
 #   --per-h M         CPE8R elements per thickness h along the sheet (default 4)

@@ -28,7 +28,11 @@ deck's tools describe the surfaces that the sheet centreline touches
 (docs/theory.md section 5, docs/PROFILE_FORMAT.md); the physical surfaces
 are these offset by h/2 away from the sheet, meshed as thin strips of CPE4
 elements whose nodes are all prescribed (rigid tools). NODE TO SURFACE
-penalty contact, linear pressure-overclosure, Coulomb friction. One *STATIC
+penalty contact, linear pressure-overclosure, Coulomb friction. The material
+(material_cards): J2 with the deck's isotropic curve, and for model
+'combined' with linear back stresses CalculiX's combined hardening (the
+kinematic curve under *PLASTIC, HARDENING=COMBINED, the isotropic one under
+*CYCLIC HARDENING). One *STATIC
 step: the lower tool rises by lock_depth in time 0..1 (right edge held),
 then the right edge is pulled by pull_distance in time 1..2 (tools held).
 
@@ -315,6 +319,95 @@ def edge_heights(up, lo, x, lock):
 # Material
 # ---------------------------------------------------------------------------
 
+# the program's "not given" (-huge(1.0_dp)) as the resolved echo prints it
+UNSET_BELOW = -1.0e300
+
+
+def real_list(value, n):
+    """The n reals of an array in the resolved echo ('1.5, 2*-1.79E+308' or
+    one number); None for an entry the echo marks as not given."""
+    out = []
+    for item in str(value).split(','):
+        item = item.strip()
+        if not item:
+            continue
+        count, _, x = item.rpartition('*')
+        out += [float(x)] * (int(count) if count else 1)
+    out = (out + [UNSET_BELOW * 2] * n)[:n]
+    return [None if x < UNSET_BELOW else x for x in out]
+
+
+def yield_surface_check(deck, mat):
+    """Refuse a yield surface other than von Mises, naming the variable:
+    model 'j2' r_value = 1; model 'combined' r0 = r90 = 1 (each defaults
+    to r_value)."""
+    names = ['r_value']
+    if str(mat.get('model', 'j2')).lower() == 'combined':
+        names = []
+        for name in ('r0', 'r90'):
+            v = real_list(mat.get(name, UNSET_BELOW * 2), 1)[0]
+            names.append(name if v is not None else 'r_value')
+    for name in names:
+        r = float(mat[name])
+        if abs(r - 1.0) > 1e-12:
+            fail("deck '%s', group &material, variable %s: only a von Mises yield surface "
+                 "(r0 = r90 = r_value = 1) is modelled, not %g" % (deck, name, r))
+
+
+def kinematic_modulus(deck, mat):
+    """The slope C (MPa) of the uniaxial back stress X = C p that CalculiX's
+    combined hardening can take: the sum of the deck's kinematic_c(i), each
+    linear (kinematic_gamma(i) = 0; a back stress with C = 0 adds nothing).
+    An Armstrong-Frederick back stress (gamma > 0) is refused: CalculiX's
+    kinematic curve is a function of the equivalent plastic strain, its back
+    stress never recovers."""
+    c = real_list(mat.get('kinematic_c', ''), 3)
+    gamma = real_list(mat.get('kinematic_gamma', ''), 3)
+    total = 0.0
+    for i, (ci, gi) in enumerate(zip(c, gamma)):
+        if ci is None:
+            continue
+        if gi is not None and gi > 0.0 and ci > 0.0:
+            fail("deck '%s', group &material, variable kinematic_gamma(%d): only linear (Prager) "
+                 "back stresses, kinematic_gamma = 0, are modelled (CalculiX's combined hardening "
+                 "has no Armstrong-Frederick recovery), not %g" % (deck, i + 1, gi))
+        total += ci
+    return total
+
+
+def material_cards(deck, mat):
+    """The lines of the sheet's material after *MATERIAL: *ELASTIC and the
+    plasticity of the deck's law (docs/continuum-check.md, "The material").
+
+    model 'j2': *PLASTIC, the isotropic curve (hardening_table).
+    model 'combined' with linear back stresses of total slope C > 0:
+    *PLASTIC, HARDENING=COMBINED with the kinematic curve, the uniaxial yield
+    stress of a purely kinematic law, sigma_y(0) + C p, at the first and last
+    plastic strain of the isotropic curve (CalculiX uses its slope only: the
+    back stress grows by (2/3) C d eps_p, X = C p in uniaxial tension; it
+    stays constant past the last point), and *CYCLIC HARDENING with the
+    isotropic curve. C = 0 is the isotropic law. Anything else is refused
+    (fail) naming deck, group and variable.
+    """
+    model = str(mat.get('model', 'j2')).lower()
+    if model not in ('j2', 'combined'):
+        fail("deck '%s', group &material, variable model: only 'j2' and 'combined' are modelled, "
+             "not '%s' (a user UMAT has no CalculiX counterpart here)" % (deck, model))
+    yield_surface_check(deck, mat)
+    iso = hardening_table(deck, mat)
+    lines = ['*ELASTIC', '%.12g, %.12g' % (float(mat['youngs_modulus']), float(mat['poissons_ratio']))]
+    c = kinematic_modulus(deck, mat) if model == 'combined' else 0.0
+    if c > 0.0:
+        (s0, e0), e1 = iso[0], iso[-1][1]
+        lines += ['*PLASTIC, HARDENING=COMBINED',
+                  '%.12g, %.12g' % (s0, e0), '%.12g, %.12g' % (s0 + c * (e1 - e0), e1),
+                  '*CYCLIC HARDENING']
+    else:
+        lines.append('*PLASTIC')
+    lines += ['%.12g, %.12g' % (s, ep) for s, ep in iso]
+    return lines, c
+
+
 def hardening_table(deck, mat):
     """(stress, plastic strain) rows of *PLASTIC for the deck's hardening law."""
     law = str(mat['hardening']).lower()
@@ -363,12 +456,7 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
     """Write OUT_DIR/continuum.inp and continuum_model.json for the case."""
     deck = nml.get('_deck', '?')
     sheet, mat, tools, load = nml['sheet'], nml['material'], nml['tools'], nml['loading']
-    if str(mat.get('model', 'j2')).lower() != 'j2':
-        fail("deck '%s', group &material, variable model: only 'j2' is modelled "
-             "(a user UMAT has no CalculiX counterpart here)" % deck)
-    if abs(float(mat['r_value']) - 1.0) > 1e-12:
-        fail("deck '%s', group &material, variable r_value: only r_value = 1 (von Mises) "
-             "is modelled, not %g" % (deck, float(mat['r_value'])))
+    sheet_material, kinematic_c = material_cards(deck, mat)
     h = float(sheet['thickness'])
     half = 0.5 * float(sheet['length'])
     left_free = str(sheet['left_edge']).lower() == 'free'
@@ -377,7 +465,7 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
     lock = float(load['lock_depth']) if bead != 'none' else 0.0
     pull = float(load['pull_distance'])
     mu = float(tools.get('friction', 0.0))
-    e_mod, nu = float(mat['youngs_modulus']), float(mat['poissons_ratio'])
+    e_mod = float(mat['youngs_modulus'])
 
     nx = max(1, int(round(2 * half / h * per_h)))
     ny = through
@@ -501,9 +589,8 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
         for side in tool_nodes:
             f.write('*NSET, NSET=N%s\n' % side.upper())
             write_lines(f, [n for n, _, _ in tool_nodes[side]])
-        f.write('*MATERIAL, NAME=SHEETMAT\n*ELASTIC\n%.12g, %.12g\n*PLASTIC\n' % (e_mod, nu))
-        for s, ep in hardening_table(deck, mat):
-            f.write('%.12g, %.12g\n' % (s, ep))
+        f.write('*MATERIAL, NAME=SHEETMAT\n')
+        f.write('\n'.join(sheet_material) + '\n')
         f.write('*SOLID SECTION, ELSET=SHEET, MATERIAL=SHEETMAT\n1.\n')
         if tool_elems:
             f.write('*MATERIAL, NAME=TOOLMAT\n*ELASTIC\n%.6g, 0.3\n' % TOOL_E)
@@ -578,6 +665,7 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
     info = {
         'deck': deck, 'title': nml.get('control', {}).get('title', ''),
         'thickness': h, 'half_length': half, 'youngs_modulus': e_mod,
+        'kinematic_c': kinematic_c,
         'lock_depth': lock, 'pull_distance': pull, 'left_edge_free': left_free,
         'back_tension': back, 'friction': mu, 'bead': bead, 'nx': nx, 'ny': ny,
         'through': through, 'per_h': per_h, 'has_tools': bool(tool_nodes),

@@ -490,6 +490,15 @@ def gen_bead_cards(ctx):
     return text
 
 
+def gen_ccx_combined_element(ctx):
+    """docs/continuum-check.md: tests/ccx_combined_element.sh (CalculiX's
+    combined hardening in one element against its closed form, and the laws
+    the cross-check refuses), verbatim; needs ccx."""
+    out = script_output(ctx, ["bash", "tests/ccx_combined_element.sh", ctx.program])
+    text = "```\n$ tests/ccx_combined_element.sh\n" + out + "\n```"
+    return lambda raw: text
+
+
 GENERATORS = {
     "readme_example": ("README.md", gen_readme_example, "bin/drawbead on input/fig5a_beadA_steel.nml"),
     "paper_table": ("docs/validation.md", gen_paper_table, "every input/fig*.nml and strip_tension.nml"),
@@ -519,6 +528,8 @@ GENERATORS = {
                   " (not checkable)"),
     "bead_cards": ("docs/user-guide.md", gen_bead_cards,
                    "scripts/sweep.sh over lock_depth on fig9c and scripts/bead_curves.sh on it"),
+    "ccx_combined_element": ("docs/continuum-check.md", gen_ccx_combined_element,
+                             "tests/ccx_combined_element.sh: CalculiX's combined hardening in one element"),
     "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5: 1 and 2 threads, scaling (not checkable)"),
 }
 UNCHECKABLE = {"bench", "contact_cost", "neck_cost"}
