@@ -19,6 +19,7 @@ module output
    use mesh, only: element_dofs
    use element, only: v_dofs, w_dofs, igp_strain, igp_curvature, igp_force, igp_moment
    use section, only: ih_strain, col_eps22, col_eqps, ih_stress22
+   use contact, only: ich_active, ich_pressure, ich_mu
    use model, only: model_type, state_type, gauss_position
    use tools, only: tool_sample
    use os, only: make_directory, file_create, file_write, file_write_at, file_close, file_remove, &
@@ -65,7 +66,9 @@ module output
       ' 8:thickness_log_strain(mid-surface) 9:max_equivalent_plastic_strain(through thickness)'// &
       ' 10:rho*h (bending strain) 11:N/(E h) 12:M/(E h^2)'// &
       ' 13:localization_indicator (smallest eigenvalue of the scaled section tangent, <= 0: localized)'// &
-      ' 14:tau22_top[MPa] 15:tau22_bottom[MPa] (thickness stress on the faces: the contact section)'
+      ' 14:tau22_top[MPa] 15:tau22_bottom[MPa] (thickness stress on the faces: the contact section)'// &
+      ' 16:p_upper[MPa] 17:p_lower[MPa] (contact pressure of the upper, lower tool: 0 out of contact)'// &
+      ' 18:mu_upper 19:mu_lower (friction coefficient in use there: 0 out of contact)'
 
 contains
 
@@ -348,7 +351,7 @@ contains
       type(open_file), intent(in) :: f
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
-      integer, parameter :: row_len = 15*25 + 1
+      integer, parameter :: row_len = 19*25 + 1
       character(len=:), allocatable :: rows
       integer :: e, ig, dofs(8), mid, k
       real(dp) :: le, nv(4), dn(4), d2n(4), v, w, h, eps, top, bot, e22, epmax
@@ -374,7 +377,9 @@ contains
                (gauss_position(m, e, ig) + v)/h, &
                w/h, eps, log(1.0_dp + eps), top, bot, e22, epmax, s%gpn(igp_curvature, ig, e)*h, &
                s%gpn(igp_force, ig, e)/(m%youngs*h), s%gpn(igp_moment, ig, e)/(m%youngs*h*h), &
-               s%indicator(ig, e), s%hn(m%npt, ih_stress22, ig, e), s%hn(1, ih_stress22, ig, e)
+               s%indicator(ig, e), s%hn(m%npt, ih_stress22, ig, e), s%hn(1, ih_stress22, ig, e), &
+               merge(s%cn(ich_pressure, ig, e, :), 0.0_dp, s%cn(ich_active, ig, e, :) > 0.5_dp), &
+               merge(s%cn(ich_mu, ig, e, :), 0.0_dp, s%cn(ich_active, ig, e, :) > 0.5_dp)
             rows(k + row_len:k + row_len) = nl
             k = k + row_len
          end do

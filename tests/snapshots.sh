@@ -4,7 +4,7 @@
 # increment at or past each multiple of snapshot_every h of H and of delta.
 #  - the clamped strip in tension, snapshot_every = 2.5: the blocks' loads
 #    are those the rule picks from pull.dat, each block has 4 n_elements rows
-#    of 15 columns, and the strain is uniform, lambda - 1 = delta/(2L) with
+#    of 19 columns, and the strain is uniform, lambda - 1 = delta/(2L) with
 #    2L = 50h, to 1e-8 (the strip is uniform: only the Newton residual,
 #    1e-8 of the force scale over a tangent of order the flow stress,
 #    separates the elements);
@@ -58,7 +58,7 @@ else
                       b = $3; L = $5; rows = 0; blanks = 0; next }
         NF == 0 { blanks++; next }
         /^#/ { next }
-        { rows++; if (NF != 15) bad = 1; d = $4 - L / 50; if (d < 0) d = -d; if (d > dmax) dmax = d }
+        { rows++; if (NF != 19) bad = 1; d = $4 - L / 50; if (d < 0) d = -d; if (d > dmax) dmax = d }
         END { if (rows != n) bad = 1; printf "max |lambda - 1 - delta/2L| = %.2e\n", dmax > "/dev/stderr";
               exit bad || dmax > 1e-8 }' "$snap" 2> "$out/strip_err"; then
         fail "strip: wrong rows/columns or non-uniform strain ($(cat "$out/strip_err"))"
