@@ -5,14 +5,14 @@
 module energy
    use kinds, only: dp
    use hermite, only: n_gauss, gauss_wt
-   use section, only: ih_sse, ih_spd, ih_work22
+   use section, only: ih_sse, ih_spd, ih_work22, ih_statev
    use contact, only: penalty_energy, ich_penetration, ich_dissipation
    use model, only: model_type, state_type, load_type
    use element, only: igp_gradient_energy
    use record, only: run_record
    implicit none
    private
-   public :: energy_totals, add_increment_work
+   public :: energy_totals, add_increment_work, stored_plastic_energy
 
 contains
 
@@ -75,4 +75,28 @@ contains
          end do
       end do
    end subroutine energy_totals
+
+   !> STORED_PLASTIC_ENERGY: the part of the plastic work that the material's
+   !> state stores rather than dissipates (the back stresses of kinematic
+   !> hardening, docs/theory.md §13.4: the law's stored_energy), integrated
+   !> over the sheet, N mm/mm; 0 for an isotropic law.  The plastic
+   !> dissipation is energy_totals' plastic work less this.
+   !>  m, s  [in]  model and converged state
+   function stored_plastic_energy(m, s) result(w)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      real(dp) :: w, dv, ws
+      integer :: e, ig, k
+      w = 0.0_dp
+      do e = 1, m%n_el
+         do ig = 1, n_gauss
+            dv = gauss_wt(ig)*(m%x(e + 1) - m%x(e))
+            ws = 0.0_dp
+            do k = 1, m%npt
+               ws = ws + m%wz(k)*m%material%stored_energy(s%hn(k, ih_statev:, ig, e))
+            end do
+            w = w + dv*ws
+         end do
+      end do
+   end function stored_plastic_energy
 end module energy

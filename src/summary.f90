@@ -6,7 +6,7 @@ module summary
    use model, only: model_type, state_type
    use record, only: run_record, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
                      run_out_of_memory
-   use energy, only: energy_totals
+   use energy, only: energy_totals, stored_plastic_energy
    use output, only: write_text_file
    use text, only: itoa
    implicit none
@@ -99,7 +99,7 @@ contains
       integer, intent(out) :: ios
       character(len=:), allocatable, intent(out) :: iomsg
       character(len=:), allocatable :: text
-      real(dp) :: h, eh, fsteady, steady_at, thinning, energy(5), pull_work, de(5)
+      real(dp) :: h, eh, fsteady, steady_at, thinning, energy(5), pull_work, de(5), stored
       logical :: split
       logical :: steady
       character(len=32) :: status
@@ -189,6 +189,10 @@ contains
       call put(text, 'energy_external_work', rec%work, .true.)
       call put(text, 'energy_elastic', energy(1), .true.)
       call put(text, 'energy_plastic', energy(2), .true.)
+      ! of it stored by the back stresses (kinematic hardening), the rest dissipated
+      stored = 0.0_dp
+      if (allocated(s%hn)) stored = stored_plastic_energy(m, s)
+      call put(text, 'energy_plastic_stored', stored, .true.)
       call put(text, 'energy_penalty', energy(3), .true.)
       call put(text, 'energy_friction', energy(4), .true.)
       call put(text, 'energy_normal_stress', energy(5), .true.)
