@@ -221,7 +221,8 @@ def strain_rows(info, blk):
         peeq = [pe[ej * nx + ei + 1] for ej in range(ny) if ej * nx + ei + 1 in pe]
         rows.append([ref[k] / h, 0.5 * (a[0] + b[0]) / h, 0.5 * (a[1] + b[1]) / h,
                      lam - 1.0, math.log(lam), lt, lb, math.log(thick / h),
-                     max(peeq) if peeq else NAN, rho * h, NAN, NAN, NAN, NAN, NAN])
+                     max(peeq) if peeq else NAN, rho * h, NAN, NAN, NAN, NAN, NAN,
+                     NAN, NAN, NAN, NAN])
     return rows
 
 
@@ -231,7 +232,9 @@ STRAIN_LEGEND = ('1:s/h (reference position) 2:x/h 3:y/h (current centreline) 4:
                  '(through thickness) 10:rho*h (bending strain) 11:N/(E h) 12:M/(E h^2) '
                  '13:localization_indicator (smallest eigenvalue of the scaled section '
                  'tangent, <= 0: localized) 14:tau22_top[MPa] 15:tau22_bottom[MPa] (thickness '
-                 'stress on the faces: the contact section)')
+                 'stress on the faces: the contact section) 16:p_upper[MPa] 17:p_lower[MPa] '
+                 '(contact pressure of the upper, lower tool: 0 out of contact) 18:mu_upper '
+                 '19:mu_lower (friction coefficient in use there: 0 out of contact)')
 CONTINUUM_NOTE = ('CalculiX plane-strain continuum (scripts/continuum_check.sh): one row per pair '
                   'of neighbouring mid-surface nodes; NaN = not given by the continuum '
                   '(docs/continuum-check.md)')
