@@ -332,7 +332,7 @@ contains
       real(dp), intent(in), optional :: s22n(n), s22(n)
       real(dp), intent(out), optional :: dsig_ds22(n)
       real(dp) :: lam, mu, l2m, e, nu, e_ps, p_n, p, x, tr(3), xi(3), q, sy, hp, s(3), &
-                  sv(law%n_state), dd(2, 2), coupling
+                  sv(law%n_state), dd(2, 2), coupling, de(2)
       integer :: k, i
       e = law%youngs
       nu = law%poisson
@@ -378,7 +378,9 @@ contains
          end if
          s = [stress(k, 1), p_n, stress(k, 2)]
          sv = statev(k, :)
-         call drive_thickness(law, s, sv, dd, coupling, sse(k), spd(k), stran11(k), dstran(k, :), &
+         ! a row of dstran is strided: a copy, not a compiler's temporary
+         de = dstran(k, :)
+         call drive_thickness(law, s, sv, dd, coupling, sse(k), spd(k), stran11(k), de, &
                               p, zbar(k), k, pnewdt)
          if (pnewdt < 1.0_dp) return
          stress(k, 1) = s(1)
