@@ -14,7 +14,7 @@
 # decks, such as profiles, mean what they meant for the sweep).
 #
 # First it runs, beside every case whose friction is not 0, its
-# frictionless companion: the same deck with friction = 0 (cases that
+# frictionless companion: the same deck with friction = 0 and friction_law = 'coulomb' (cases that
 # differ only in friction share one), into SWEEPDIR/frictionless/ (decks/,
 # runs/, decks.txt, status.tsv, companions.tsv). Companions already run
 # from the same deck are not run again. Then, for each combination of the

@@ -6,7 +6,8 @@ Subcommands:
 
   companions SWEEPDIR
       Write the frictionless companion of every case of the sweep whose
-      friction is not 0: its deck with friction = 0, one per combination
+      friction is not 0 (or whose friction_law is not 'coulomb'): its deck
+      with friction = 0 (and friction_law = 'coulomb'), one per combination
       of the swept values other than friction (cases that differ only in
       friction share it), into SWEEPDIR/frictionless/decks/<case>.nml
       (named after the first such case), the list of these decks into
@@ -106,13 +107,17 @@ def cmd_companions(args):
             die('case %s is not in %s/decks.txt' % (c[0], sweepdir))
         text = read_text(decks[c[0]])
         mu = st.deck_value(text, 'friction')
-        if mu is None or parse_real(mu) == 0.0:
+        law = (st.deck_value(text, 'friction_law') or "'coulomb'").strip('\'" ').lower()
+        if (mu is None or parse_real(mu) == 0.0) and law == 'coulomb':
             rows.append((c[0], 'runs/' + c[0]))       # its own companion
             continue
         key = tuple(c[1 + i] for i in others)
         if key not in first:
             name = first[key] = c[0]
             new = st.override(text, 'friction', '0.0')
+            if law != 'coulomb':
+                # mu(p) has its bounds, a table its own mu: Coulomb with 0
+                new = st.override(new, 'friction_law', "'coulomb'")
             title = st.deck_value(new, 'title')
             if title and title[0] in '\'"':
                 title = title[1:-1]

@@ -499,6 +499,198 @@ def gen_ccx_combined_element(ctx):
     return lambda raw: text
 
 
+
+# ---------------------------------------------------------------------------
+# What the laws change (docs/validation.md): the clamped and free beads A and
+# B with the published material sets and a pressure-dependent friction
+# ---------------------------------------------------------------------------
+
+# The bases: the continuum-check decks of beads A and B (clamped, free), and
+# the paper's free bead B, each run with the contact section and stopped at
+# its tearing point (stop_at_localization = .true.; the paper's deck of the
+# free bead B with the defaults' section and criterion).
+LAWS_BASES = [("A clamped", "input/cc_fig5a_beadA_steel.nml"),
+              ("B clamped", "input/cc_fig6_beadB_steel.nml"),
+              ("A free", "input/cc_fig9c_beadA_steel_free.nml"),
+              ("B free", "input/fig9d_beadB_steel_free.nml")]
+
+# Yoshida and Uemori (2002), Fig. 7: their IH+NLK model (Voce isotropic part
+# Y + Rsat (1 - exp(-m p)), one Armstrong-Frederick back stress
+# dalpha = C ((2/3) a dep - alpha dp)), E0 of their Table 1; in the deck's
+# terms kinematic_c = C a, kinematic_gamma = C.  nu = 0.3 (not given).
+LAWS_SPCC = dict(E=206000.0, y=120.0, q=166.0, b=8.4, c=390.0 * 43.0, g=390.0)
+LAWS_SPFC = dict(E=206000.0, y=410.0, q=157.0, b=16.0, c=70.0 * 144.0, g=70.0)
+# Vegter and van den Boogaard (2006), Table 2: an IF (deep-drawing) steel.
+LAWS_R0, LAWS_R90 = 1.85, 2.51
+# mu(p): a round set of the power law's form (no published parameter set
+# found): 0.1 at 10 MPa, m = 0.8, within [0.05, 0.2].
+LAWS_MU_P = ("   friction_law = 'power', friction_p_ref = 10.0, friction_m = 0.8\n"
+             "   friction_mu_min = 0.05, friction_mu_max = 0.2\n")
+
+
+def laws_material(m, kinematic=True, r=None):
+    """The &material group of a published set (m: LAWS_SPCC or LAWS_SPFC)."""
+    lines = ["&material"]
+    lines.append("   model = 'combined'" if kinematic or r else "   model = 'j2'")
+    lines += [f"   youngs_modulus = {m['E']}", "   poissons_ratio = 0.3", "   hardening = 'voce'",
+              f"   voce_sigma0 = {m['y']}, voce_q = {m['q']}, voce_b = {m['b']}"]
+    if kinematic:
+        lines += [f"   kinematic_c = {m['c']}", f"   kinematic_gamma = {m['g']}"]
+    if r:
+        lines += [f"   r0 = {LAWS_R0}, r90 = {LAWS_R90}", f"   drawing_direction = '{r}'"]
+    return "\n".join(lines + ["/"])
+
+
+def laws_monotonic(m, name):
+    """&material of an isotropic law with the combined set's monotonic
+    curve, Y + Rsat (1 - exp(-m p)) + (C/gamma) (1 - exp(-gamma p)), as a
+    curve file (hardening = 'table', written into the run folder at
+    gen_laws_table's start): the same curve in tension, no Bauschinger
+    effect."""
+    return ("&material\n   model = 'j2'\n   youngs_modulus = %s\n   poissons_ratio = 0.3\n"
+            "   hardening = 'table'\n   curve_file = '{TMP}/%s.curve'\n/" % (m['E'], name))
+
+
+def laws_curve_text(m):
+    """The curve file of laws_monotonic: 0 to 2 in plastic strain, steps
+    of 1/(20 gamma) where the back stress saturates, then of 0.01."""
+    ps = [k / (20.0 * m['g']) for k in range(0, 200)]
+    ps += [ps[-1] + 0.01 * k for k in range(1, int((2.0 - ps[-1]) / 0.01) + 1)]
+    lines = ["# plastic strain, flow stress (MPa): the monotonic curve of a combined set"]
+    for p in ps:
+        sy = m['y'] + m['q'] * (1 - math.exp(-m['b'] * p)) + m['c'] / m['g'] * (1 - math.exp(-m['g'] * p))
+        lines.append("%.8f %.6f" % (p, sy))
+    return "\n".join(lines) + "\n"
+
+
+LAWS_VARIANTS = [
+    ("DQSK isotropic, Coulomb (the deck)", None, False),
+    ("DQSK isotropic, mu(p)", None, True),
+    ("SPCC isotropic part", laws_material(LAWS_SPCC, kinematic=False), False),
+    ("SPCC isotropic, combined's monotonic curve", laws_monotonic(LAWS_SPCC, "spcc"), False),
+    ("SPCC combined", laws_material(LAWS_SPCC), False),
+    ("SPCC combined, r0/r90 rolling", laws_material(LAWS_SPCC, r="rolling"), False),
+    ("SPCC combined, r0/r90 transverse", laws_material(LAWS_SPCC, r="transverse"), False),
+    ("DP590 isotropic part", laws_material(LAWS_SPFC, kinematic=False), False),
+    ("DP590 isotropic, combined's monotonic curve", laws_monotonic(LAWS_SPFC, "spfc"), False),
+    ("DP590 combined", laws_material(LAWS_SPFC), False),
+]
+
+
+def laws_deck(base_path, material, mu_p):
+    """The text of a study deck: the base deck stopped at its tearing point,
+    with the contact section, its &material replaced and mu(p) added."""
+    with open(os.path.join(ROOT, base_path), encoding="utf-8") as f:
+        text = f.read()
+    text = text.replace("stop_at_localization = .false.", "stop_at_localization = .true.")
+    text = re.sub(r"\n\s*tearing_criterion = 'section'", "", text)
+    text = re.sub(r"\n\s*normal_stress = 'none'", "", text)
+    if material:
+        text = re.sub(r"&material.*?\n/", lambda _: material, text, count=1, flags=re.S)
+    if mu_p:
+        text = text.replace("&tools\n", "&tools\n" + LAWS_MU_P, 1)
+    return text
+
+
+def laws_metrics(run_dir, log_path, summary):
+    """The numbers of a run: punch force at 98% of the lock depth (lock.dat),
+    the largest restraining force, its pull and the lift there (pull.dat),
+    the peak mid-surface strain after locking (strain_lock.dat), the
+    tearing point (summary.txt)."""
+    def rows(name):
+        path = os.path.join(run_dir, name)
+        if not os.path.exists(path):
+            return []
+        with open(path, encoding="utf-8") as f:
+            return [[float(x) for x in ln.split()] for ln in f if ln.strip() and not ln.startswith("#")]
+    resolved = {}
+    with open(log_path, encoding="utf-8") as f:
+        for ln in f:
+            m = re.match(r"\s*(LOCK_DEPTH|THICKNESS)=\s*([-+0-9.Ee]+)", ln)
+            if m:
+                resolved[m.group(1)] = float(m.group(2))
+    full = resolved["LOCK_DEPTH"] / resolved["THICKNESS"]
+    lock, pull, strain = rows("lock.dat"), rows("pull.dat"), rows("strain_lock.dat")
+    f98 = None
+    for a, b in zip(lock, lock[1:]):
+        if a[0] <= 0.98 * full <= b[0]:
+            f98 = a[2] + (b[2] - a[2]) * (0.98 * full - a[0]) / (b[0] - a[0])
+    n_max = d_max = lift = None
+    if pull:
+        k = max(range(len(pull)), key=lambda i: pull[i][2])
+        n_max, d_max, lift = pull[k][2], pull[k][0], pull[k][7]
+    peak = max(r[3] for r in strain) if strain and lock and lock[-1][0] >= full * (1 - 1e-9) else None
+    if real(summary, "tearing_delta_over_h") is not None:
+        tear = "Δ = %.2fh" % real(summary, "tearing_delta_over_h")
+    elif real(summary, "tearing_lock_over_h") is not None:
+        tear = "lock, H = %.2fh" % real(summary, "tearing_lock_over_h")
+    else:
+        tear = "none"
+    return f98, n_max, d_max, lift, peak, tear
+
+
+def gen_laws_table(ctx):
+    """docs/validation.md: the beads of LAWS_BASES with each of
+    LAWS_VARIANTS (decks written by laws_deck into the run folder), side
+    by side."""
+    jobs, names = [], []
+    for name, m in (("spcc", LAWS_SPCC), ("spfc", LAWS_SPFC)):
+        with open(os.path.join(ctx.tmp, name + ".curve"), "w", encoding="utf-8") as f:
+            f.write(laws_curve_text(m))
+    for bi, (bead, base) in enumerate(LAWS_BASES):
+        for vi, (variant, material, mu_p) in enumerate(LAWS_VARIANTS):
+            name = f"laws_{bi}_{vi}"
+            if material:
+                material = material.replace("{TMP}", ctx.tmp)
+            jobs.append((name, laws_deck(base, material, mu_p)))
+            names.append((name, bead, variant))
+    res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    rows = []
+    for name, bead, variant in names:
+        s = res[name]
+        f98, n_max, d_max, lift, peak, tear = laws_metrics(
+            os.path.join(ctx.tmp, name), os.path.join(ctx.tmp, name + ".log"), s)
+        rows.append([bead, variant, s["status"], Num(f98, ".1f"), Num(n_max, ".1f"), Num(d_max, ".2f"),
+                     Num(lift, ".1f"), Num(peak, ".4f"), tear])
+    header = ["bead", "law", "status", "punch force at 98% of full lock (N/mm)",
+              "largest restraining force (N/mm)", "at Δ/h", "lift there (N/mm)",
+              "peak strain after locking", "tearing"]
+    align = ["---", "---", "---"] + ["---:"] * 5 + ["---"]
+    return lambda raw: markdown_table(header, align, rows, raw)
+
+
+LAWS_BEAD_LAWS = [("DQSK isotropic, Coulomb", None, False),
+                  ("DQSK isotropic, mu(p)", None, True),
+                  ("SPCC combined", laws_material(LAWS_SPCC), False)]
+
+
+def gen_laws_bead_curves(ctx):
+    """docs/validation.md: scripts/sweep.sh over lock_depth = 2, 3, 4 mm of
+    the free bead A (input/cc_fig9c_beadA_steel_free.nml as laws_deck writes
+    it) with each of LAWS_BEAD_LAWS, scripts/bead_curves.sh on each sweep,
+    their bead_table.txt side by side."""
+    tables = []
+    for li, (law, material, mu_p) in enumerate(LAWS_BEAD_LAWS):
+        base = os.path.join(ctx.tmp, f"laws_bead_{li}.nml")
+        with open(base, "w", encoding="utf-8") as f:
+            f.write(laws_deck("input/cc_fig9c_beadA_steel_free.nml", material, mu_p))
+        sweep = os.path.join(ctx.tmp, f"laws_sweep_{li}")
+        script_output(ctx, ["scripts/sweep.sh", "--bin", ctx.program, "-j", str(ctx.workers), "-o", sweep,
+                            base, "lock_depth=2,3,4"])
+        script_output(ctx, ["scripts/bead_curves.sh", "--bin", ctx.program, "-j", str(ctx.workers), sweep])
+        with open(os.path.join(sweep, "bead_curves", "bead_table.txt"), encoding="utf-8") as f:
+            tables.append([[float(x) for x in ln.split()] for ln in f
+                           if ln.strip() and not ln.startswith("#")])
+    rows = []
+    for k, r in enumerate(tables[0]):
+        for (law, _, _), t in zip(LAWS_BEAD_LAWS, tables):
+            row = next((x for x in t if abs(x[0] - r[0]) < 1e-9), None)
+            rows.append([Num(r[0], ".1f"), law] + ([Num(row[i], ".1f") for i in (1, 2, 3, 4)]
+                                                  + [Num(row[5], ".3f")] if row else ["none"] * 5))
+    header = ["penetration (mm)", "law", "total (N/mm)", "bending (N/mm)", "friction part (N/mm)",
+              "lift (N/mm)", "effective friction coefficient"]
+    return lambda raw: markdown_table(header, ["---:", "---"] + ["---:"] * 5, rows, raw)
+
 GENERATORS = {
     "readme_example": ("README.md", gen_readme_example, "bin/drawbead on input/fig5a_beadA_steel.nml"),
     "paper_table": ("docs/validation.md", gen_paper_table, "every input/fig*.nml and strip_tension.nml"),
@@ -530,6 +722,10 @@ GENERATORS = {
                    "scripts/sweep.sh over lock_depth on fig9c and scripts/bead_curves.sh on it"),
     "ccx_combined_element": ("docs/continuum-check.md", gen_ccx_combined_element,
                              "tests/ccx_combined_element.sh: CalculiX's combined hardening in one element"),
+    "laws_table": ("docs/validation.md", gen_laws_table,
+                   "the cc_ beads A and B, clamped and free, and fig9d, with published hardening sets and mu(p)"),
+    "laws_bead_curves": ("docs/validation.md", gen_laws_bead_curves,
+                         "scripts/sweep.sh over lock_depth and scripts/bead_curves.sh on the free bead A with three laws"),
     "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5: 1 and 2 threads, scaling (not checkable)"),
 }
 UNCHECKABLE = {"bench", "contact_cost", "neck_cost"}
