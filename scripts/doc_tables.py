@@ -438,6 +438,48 @@ def gen_contact_cost(ctx):
     return lambda raw: out
 
 
+def gen_laws_cost(ctx):
+    """docs/performance.md: the cost of the material and friction laws on
+    input/cc_fig5a_beadA_steel.nml (bead A, clamped, mu = 0.1, the contact
+    section): as shipped (the paper's J2 law), with model = 'combined' and
+    no back stress (law_combined's return mapping and the driven thickness
+    strain, the same material), with two Armstrong-Frederick back stresses
+    (C = 20000, 2000 MPa, gamma = 200, 0), and with the power-law mu(p) of
+    friction_power; each stopped at 2h of pull, one thread, three runs,
+    scripts/bench.sh --markdown, verbatim."""
+    cdir = os.path.join(ctx.tmp, "laws_cost_decks")
+    os.makedirs(cdir, exist_ok=True)
+    base = read_doc("input/cc_fig5a_beadA_steel.nml")
+    variants = {
+        "j2": "",
+        "combined_no_back_stress": "&material model = 'combined' /\n",
+        "combined_armstrong_frederick": ("&material model = 'combined', kinematic_c = 20000.0, 2000.0, "
+                                         "kinematic_gamma = 200.0, 0.0 /\n"),
+        "j2_mu_p": ("&tools friction_law = 'power', friction_p_ref = 10.0, friction_m = 0.8, "
+                    "friction_mu_min = 0.05, friction_mu_max = 0.3 /\n"),
+    }
+    decks = []
+    for name, extra in variants.items():
+        path = os.path.join(cdir, "cc_fig5a_" + name + ".nml")
+        text = base
+        # merge the variant's group into the deck's own
+        if extra:
+            group = extra.split()[0]
+            body = extra[len(group):].rstrip().rstrip("/").strip()
+            if group not in text:
+                raise RuntimeError(f"input/cc_fig5a_beadA_steel.nml has no {group} group")
+            text = text.replace(group, group + " " + body + ",", 1)
+        if "pull_distance = 2.286" not in text:
+            raise RuntimeError("input/cc_fig5a_beadA_steel.nml: pull_distance = 2.286 expected")
+        text = text.replace("pull_distance = 2.286", "pull_distance = 1.524", 1)
+        with open(path, "w") as out:
+            out.write(text)
+        decks.append(path)
+    out = script_output(ctx, ["scripts/bench.sh", "--markdown", "-n", "3", "--threads", "1",
+                              "--no-scaling", "--keep", os.path.join(ctx.tmp, "laws_cost")] + decks)
+    return lambda raw: out
+
+
 def gen_neck_cost(ctx):
     """docs/performance.md: the clamped steel continuum-check decks stopped
     at the tearing point, on their uniform mesh (refine_exit = .false.), on
@@ -718,6 +760,9 @@ GENERATORS = {
     "neck_cost": ("docs/performance.md", gen_neck_cost,
                   "scripts/bench.sh on the clamped cc_ steel decks stopped at tearing: uniform, default path, refine_neck"
                   " (not checkable)"),
+    "laws_cost": ("docs/performance.md", gen_laws_cost,
+                  "scripts/bench.sh on cc_fig5a with the J2 law, combined hardening with and without"
+                  " back stresses, and mu(p) (not checkable)"),
     "bead_cards": ("docs/user-guide.md", gen_bead_cards,
                    "scripts/sweep.sh over lock_depth on fig9c and scripts/bead_curves.sh on it"),
     "ccx_combined_element": ("docs/continuum-check.md", gen_ccx_combined_element,
@@ -728,7 +773,7 @@ GENERATORS = {
                          "scripts/sweep.sh over lock_depth and scripts/bead_curves.sh on the free bead A with three laws"),
     "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5: 1 and 2 threads, scaling (not checkable)"),
 }
-UNCHECKABLE = {"bench", "contact_cost", "neck_cost"}
+UNCHECKABLE = {"bench", "contact_cost", "neck_cost", "laws_cost"}
 
 
 # ---------------------------------------------------------------------------
