@@ -118,7 +118,7 @@ ccx_rc=$?
 note "ccx exited with status $ccx_rc after $((SECONDS - start)) s"
 
 # 3. its results in the program's files, and the compared numbers
-python3 "$root/scripts/continuum_results.py" convert "$dir/ccx" "$dir" ||
+python3 "$root/scripts/continuum_results.py" convert "$dir/ccx" "$dir" --program "$bin" ||
     die "cannot convert the results in $dir/ccx"
 python3 "$root/scripts/continuum_results.py" metrics "$dir/program" "$dir/ccx/continuum_model.json" \
     --title "program: $name" >"$dir/program_summary.txt" || die "cannot read the program's results"

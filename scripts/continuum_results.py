@@ -3,7 +3,7 @@
 the program's own result files, and the numbers compared with the program.
 
 Usage:
-    continuum_results.py convert CCX_DIR OUT_DIR
+    continuum_results.py convert CCX_DIR OUT_DIR [--program PATH]
     continuum_results.py metrics RUN_DIR MODEL_JSON [--title TEXT]
     continuum_results.py compare PROGRAM_METRICS CONTINUUM_SUMMARY [LABEL1 LABEL2]
 
@@ -11,7 +11,9 @@ convert   reads CCX_DIR/continuum.dat, continuum.sta and continuum_model.json
           (written by scripts/continuum_model.py and ccx) and writes into
           OUT_DIR lock.dat, pull.dat, strain_lock.dat, strain_pull.dat (the
           columns, units and header style of docs/output-reference.md; the
-          columns a continuum cannot give are NaN, see docs/continuum-check.md)
+          columns a continuum cannot give are NaN, see docs/continuum-check.md;
+          the column headers are the program's own, `PATH --columns FILE`,
+          PATH the program, default bin/drawbead of the repository)
           and continuum_summary.txt. Each output time's state is checked
           to be a sheet lying in the tools (state_problem): from the first
           time it is not, the continuum's numbers are left out of its
@@ -33,6 +35,7 @@ import json
 import math
 import os
 import re
+import subprocess
 import sys
 
 NAN = float('nan')
@@ -226,21 +229,23 @@ def strain_rows(info, blk):
     return rows
 
 
-STRAIN_LEGEND = ('1:s/h (reference position) 2:x/h 3:y/h (current centreline) 4:lambda-1 '
-                 '5:ln(lambda) 6:top_fibre_log_strain 7:bottom_fibre_log_strain '
-                 '8:thickness_log_strain(mid-surface) 9:max_equivalent_plastic_strain'
-                 '(through thickness) 10:rho*h (bending strain) 11:N/(E h) 12:M/(E h^2) '
-                 '13:localization_indicator (smallest eigenvalue of the scaled section '
-                 'tangent, <= 0: localized) 14:tau22_top[MPa] 15:tau22_bottom[MPa] (thickness '
-                 'stress on the faces: the contact section) 16:p_upper[MPa] 17:p_lower[MPa] '
-                 '(contact pressure of the upper, lower tool: 0 out of contact) 18:mu_upper '
-                 '19:mu_lower (friction coefficient in use there: 0 out of contact)')
+def program_legend(program, name):
+    """The column header lines of result file name as the program writes
+    them (`program --columns name`), without their '# '."""
+    try:
+        out = subprocess.run([program, '--columns', name], capture_output=True, text=True,
+                             check=True).stdout
+    except (OSError, subprocess.CalledProcessError) as e:
+        fail('cannot get the columns of %s from %s: %s' % (name, program, e))
+    return [line[2:] if line.startswith('# ') else line for line in out.splitlines() if line.strip()]
+
+
 CONTINUUM_NOTE = ('CalculiX plane-strain continuum (scripts/continuum_check.sh): one row per pair '
                   'of neighbouring mid-surface nodes; NaN = not given by the continuum '
                   '(docs/continuum-check.md)')
 
 
-def convert(ccx_dir, out_dir):
+def convert(ccx_dir, out_dir, program=None):
     """Write the four column files and continuum_summary.txt (see header)."""
     try:
         with open(os.path.join(ccx_dir, 'continuum_model.json')) as f:
@@ -273,21 +278,16 @@ def convert(ccx_dir, out_dir):
                               lift / eh, lift, NAN, f_punch / eh])
         t_prev = t
     os.makedirs(out_dir, exist_ok=True)
-    write_table(os.path.join(out_dir, 'lock.dat'), [
-        'drawbead locking: %s' % title,
-        '1:H/h 2:F/(E h) 3:F[N/mm] 4:newton_iterations 5:dH/h 6:min_localization_indicator[-] '
-        '7:max_penetration/h 8:N/(E h) 9:N[N/mm]',
-        'F = upward force of the lower tool on the sheet per unit width (punch force); '
-        'N = horizontal reaction at the right edge',
-        CONTINUUM_NOTE], lock_rows)
-    write_table(os.path.join(out_dir, 'pull.dat'), [
-        'drawbead pulling: %s' % title,
-        '1:delta/h 2:N/(E h) 3:N[N/mm] 4:newton_iterations 5:d(delta)/h '
-        '6:min_localization_indicator[-] 7:lift/(E h) 8:lift[N/mm] 9:max_penetration/h '
-        '10:F/(E h)',
-        'N = restraining force (horizontal reaction at the right edge) per unit width; '
-        'lift = vertical force of the sheet opening the binder (on the upper tool)',
-        CONTINUUM_NOTE], pull_rows)
+    if program is None:
+        program = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                               'bin', 'drawbead')
+    write_table(os.path.join(out_dir, 'lock.dat'),
+                ['drawbead locking: %s' % title] + program_legend(program, 'lock.dat') + [CONTINUUM_NOTE],
+                lock_rows)
+    write_table(os.path.join(out_dir, 'pull.dat'),
+                ['drawbead pulling: %s' % title] + program_legend(program, 'pull.dat') + [CONTINUUM_NOTE],
+                pull_rows)
+    strain_legend = program_legend(program, 'strain_lock.dat')
     u_times = sorted(t for t in dat if 'U' in dat[t])
     t_lock = max([t for t in u_times if t <= 1.0 + 1e-9], default=None)
     t_last = u_times[-1] if u_times else None
@@ -295,7 +295,7 @@ def convert(ccx_dir, out_dir):
                           ('strain_pull.dat', t_last, 'after pulling')):
         rows = strain_rows(info, dat[t]) if t is not None else []
         write_table(os.path.join(out_dir, name), [
-            'drawbead strain distribution %s: %s' % (what, title), STRAIN_LEGEND,
+            'drawbead strain distribution %s: %s' % (what, title)] + strain_legend + [
             CONTINUUM_NOTE + '; time %s of 2' % ('none' if t is None else '%.6g' % t)], rows)
     # the first output time whose state is not a sheet in the tools: the
     # continuum's numbers from then on are left out of its summary
@@ -416,16 +416,25 @@ def summary_text(run_dir, info, title, extra=(), valid_until=None):
                 nv = y0 + (a * (dv ** 2 - x0 ** 2) + b * (dv - x0))
                 if nv <= 1.005 * y1:
                     d_pk, n_pk = dv, nv
+        # the lift (pull.dat column 8, N/mm): at the largest restraining
+        # force and at 0.5h, 1h and 2h of pull (where the run got there)
+        lifts = [r[7] for r in pull]
         vals += [('max_restraining_force_N_per_mm', n_pk),
                  ('max_restraining_force_over_Eh', n_pk / eh),
                  ('max_restraining_force_at_delta_over_h', d_pk),
                  ('max_restraining_force_is_last_row', 'yes' if k == len(ns) - 1 else 'no'),
-                 ('final_delta_over_h', ds[-1])]
+                 ('final_delta_over_h', ds[-1]),
+                 ('lift_at_max_restraining_N_per_mm', interp(ds, lifts, d_pk)),
+                 ('lift_at_half_h_N_per_mm', interp(ds, lifts, 0.5)),
+                 ('lift_at_1h_N_per_mm', interp(ds, lifts, 1.0)),
+                 ('lift_at_2h_N_per_mm', interp(ds, lifts, 2.0))]
     else:
         vals += [(k, None) for k in ('max_restraining_force_N_per_mm',
                                      'max_restraining_force_over_Eh',
                                      'max_restraining_force_at_delta_over_h',
-                                     'max_restraining_force_is_last_row', 'final_delta_over_h')]
+                                     'max_restraining_force_is_last_row', 'final_delta_over_h',
+                                     'lift_at_max_restraining_N_per_mm', 'lift_at_half_h_N_per_mm',
+                                     'lift_at_1h_N_per_mm', 'lift_at_2h_N_per_mm')]
     if strain:
         lim_x = info['bead_half_width'] / h + 1.0
         lim_s = info['half_length'] / h - 1.0
@@ -502,6 +511,8 @@ def main(argv):
     """Command line: see the module header."""
     if len(argv) == 3 and argv[0] == 'convert':
         convert(argv[1], argv[2])
+    elif len(argv) == 5 and argv[0] == 'convert' and argv[3] == '--program':
+        convert(argv[1], argv[2], argv[4])
     elif len(argv) in (3, 5) and argv[0] == 'metrics':
         try:
             with open(argv[2]) as f:

@@ -106,6 +106,10 @@ rows = [('punch force at 98% of the lock depth, N/mm', 'punch_force_98_N_per_mm'
         ('sheet tension at the lock depth (end of locking), N/mm', 'lock_tension_N_per_mm'),
         ('largest restraining force, N/mm', 'max_restraining_force_N_per_mm'),
         ('... at pull delta/h (clamped: the continuum necks)', 'max_restraining_force_at_delta_over_h'),
+        ('lift force at the largest restraining force, N/mm', 'lift_at_max_restraining_N_per_mm'),
+        ('lift force at 0.5h of pull, N/mm', 'lift_at_half_h_N_per_mm'),
+        ('lift force at 1h of pull, N/mm', 'lift_at_1h_N_per_mm'),
+        ('lift force at 2h of pull, N/mm', 'lift_at_2h_N_per_mm'),
         ('peak mid-surface strain after locking', 'peak_strain_lock'),
         ('straight-part mid-surface strain after locking', 'straight_strain_lock')]
 print('| case | quantity | continuum | paper section | ratio | contact section | ratio |')

@@ -19,7 +19,7 @@ program drawbead
    use analysis, only: run_phase
    use text, only: itoa
    use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools, remove_results, &
-                     open_snapshots, claim_output_dir
+                     open_snapshots, claim_output_dir, column_legend
    use summary, only: write_summary
    use os, only: install_stop_handlers
    use solver, only: default_threads
@@ -28,7 +28,7 @@ program drawbead
    !> room for a deck or directory name on the command line (as in the deck)
    integer, parameter :: path_max = 512
    character(len=*), parameter :: usage = 'usage: drawbead DECK.nml [-o|--output DIR]'// &
-                                  ' | --list-variables | --help | --version'
+                                  ' | --list-variables | --columns FILE | --help | --version'
    type(deck_type) :: d
    type(error_list) :: errs
    type(model_type) :: m
@@ -356,15 +356,25 @@ contains
                '  DECK.nml            the input deck (docs/input-reference.md)', &
                '  -o, --output DIR    write the results in DIR instead of &control output_dir', &
                '  --list-variables    print every deck variable as "group variable type"', &
+               '  --columns FILE      print the column header of a result file (lock.dat,'// &
+               ' pull.dat, strain_*.dat, snapshots.dat)', &
                '  --help, --version   this text, the version', &
                'exit status: 0 done, 1 bad input, 2 no convergence, 3 a result file could'// &
-               ' not be written, 4 interrupted (SIGTERM, SIGINT)'
+               ' not be written, 4 interrupted (SIGTERM, SIGINT), 5 out of memory'
             stop
          case ('--version')
             write (output_unit, '(a)') 'drawbead '//version
             stop
          case ('--list-variables')
             call list_variables(output_unit, ios)
+            if (ios /= 0) stop exit_write
+            stop
+         case ('--columns')
+            if (i == n) call usage_error('option --columns needs a result file name')
+            if (len(column_legend(argument(i + 1))) == 0) call usage_error('--columns: no result '// &
+               'file '''//argument(i + 1)//''' (lock.dat, pull.dat, strain_lock.dat, '// &
+               'strain_pull.dat, strain_localization.dat, snapshots.dat)')
+            write (output_unit, '(a)', iostat=ios) column_legend(argument(i + 1))
             if (ios /= 0) stop exit_write
             stop
          case ('-o', '--output')

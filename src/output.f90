@@ -28,7 +28,7 @@ module output
    private
    public :: output_files, open_outputs, write_row, write_strains, close_outputs, fmt_row, &
              write_tools, open_snapshots, write_snapshot, write_progress, result_files, &
-             write_text_file, remove_results, claim_output_dir, owner_lock
+             write_text_file, remove_results, claim_output_dir, owner_lock, column_legend
 
    character(len=*), parameter :: fmt_row = '(*(1x,es24.16e3))'
    character(len=1), parameter :: nl = achar(10)
@@ -59,6 +59,19 @@ module output
       character(len=:), allocatable :: failure    ! '<file>: <the system's reason>'
    end type output_files
 
+   !> The column header of lock.dat (after its title line).
+   character(len=*), parameter :: lock_columns = &
+      '# 1:H/h 2:F/(E h) 3:F[N/mm] 4:newton_iterations 5:dH/h 6:min_localization_indicator[-]'// &
+      ' 7:max_penetration/h 8:N/(E h) 9:N[N/mm]'//nl// &
+      '# F = upward force of the lower tool on the sheet per unit width (punch force);'// &
+      ' N = horizontal reaction at the right edge'
+   !> The column header of pull.dat (after its title line).
+   character(len=*), parameter :: pull_columns = &
+      '# 1:delta/h 2:N/(E h) 3:N[N/mm] 4:newton_iterations 5:d(delta)/h'// &
+      ' 6:min_localization_indicator[-] 7:lift/(E h) 8:lift[N/mm] 9:max_penetration/h'// &
+      ' 10:F/(E h)'//nl// &
+      '# N = restraining force (horizontal reaction at the right edge) per unit width;'// &
+      ' lift = vertical force of the sheet opening the binder (on the upper tool)'
    !> The column header of the strain files (strain_*.dat, snapshots.dat).
    character(len=*), parameter :: strain_columns = &
       '# 1:s/h (reference position) 2:x/h 3:y/h (current centreline) 4:lambda-1'// &
@@ -71,6 +84,29 @@ module output
       ' 18:mu_upper 19:mu_lower (friction coefficient in use there: 0 out of contact)'
 
 contains
+
+   !> COLUMN_LEGEND: the column header lines of a result file, as the
+   !> program writes them after the file's title line (`drawbead --columns
+   !> FILE` prints them for the scripts, which write files of the same
+   !> layout: scripts/continuum_results.py).
+   !>  file    [in]  lock.dat, pull.dat, strain_lock.dat, strain_pull.dat,
+   !>                strain_localization.dat or snapshots.dat
+   !>  legend  [out] the lines ('# ' first, line feeds between them); ''
+   !>                for another name
+   pure function column_legend(file) result(legend)
+      character(len=*), intent(in) :: file
+      character(len=:), allocatable :: legend
+      select case (file)
+      case ('lock.dat')
+         legend = lock_columns
+      case ('pull.dat')
+         legend = pull_columns
+      case ('strain_lock.dat', 'strain_pull.dat', 'strain_localization.dat', 'snapshots.dat')
+         legend = strain_columns
+      case default
+         legend = ''
+      end select
+   end function column_legend
 
    !> OPEN_OUTPUTS: create the output directory, remove the result files of
    !> an earlier run, start summary.txt (status = running) and open lock.dat
@@ -97,18 +133,9 @@ contains
       call open_new(out, 'summary.txt', out%progress)
       call write_progress(out, 'start', 0.0_dp, 0)
       call open_new(out, 'lock.dat', out%lock)
-      call put(out, out%lock, '# drawbead locking: '//trim(title)//nl// &
-               '# 1:H/h 2:F/(E h) 3:F[N/mm] 4:newton_iterations 5:dH/h 6:min_localization_indicator[-]'// &
-               ' 7:max_penetration/h 8:N/(E h) 9:N[N/mm]'//nl// &
-               '# F = upward force of the lower tool on the sheet per unit width (punch force);'// &
-               ' N = horizontal reaction at the right edge'//nl)
+      call put(out, out%lock, '# drawbead locking: '//trim(title)//nl//lock_columns//nl)
       call open_new(out, 'pull.dat', out%pull)
-      call put(out, out%pull, '# drawbead pulling: '//trim(title)//nl// &
-               '# 1:delta/h 2:N/(E h) 3:N[N/mm] 4:newton_iterations 5:d(delta)/h'// &
-               ' 6:min_localization_indicator[-] 7:lift/(E h) 8:lift[N/mm] 9:max_penetration/h'// &
-               ' 10:F/(E h)'//nl// &
-               '# N = restraining force (horizontal reaction at the right edge) per unit width;'// &
-               ' lift = vertical force of the sheet opening the binder (on the upper tool)'//nl)
+      call put(out, out%pull, '# drawbead pulling: '//trim(title)//nl//pull_columns//nl)
       if (out%failed) errmsg = out%failure
    end subroutine open_outputs
 

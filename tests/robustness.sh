@@ -66,6 +66,10 @@ expect 1 'text outside any namelist group' 'a gnuplot script is not a deck' -- \
 printf '\177ELF\002\001\001\000\000\000binary\n\001\002\003\377\376\n' >"$work/binary.bin"
 expect 1 'text outside any namelist group' 'a binary file is not a deck' -- "$bin" "$work/binary.bin"
 expect 1 'not a drawbead deck' 'the program itself is not a deck' -- "$bin" "$bin"
+# the column headers the scripts take from the program (one declaration)
+expect 0 '10:F/(E h)' '--columns pull.dat prints the header of pull.dat' -- "$bin" --columns pull.dat
+expect 0 '19:mu_lower' '--columns strain_lock.dat prints the strain files'"'"' header' -- "$bin" --columns strain_lock.dat
+expect 1 "no result file 'summary.txt'" '--columns of a file without columns is refused' -- "$bin" --columns summary.txt
 
 # a deck from a pipe: read whole once, never positioned (issue 28, item 3:
 # it was "Fortran runtime error: Illegal seek", exit 2)
