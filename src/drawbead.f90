@@ -19,7 +19,8 @@ program drawbead
    use analysis, only: run_phase
    use text, only: itoa
    use output, only: output_files, open_outputs, close_outputs, write_strains, write_tools, remove_results, &
-                     open_snapshots, claim_output_dir, column_legend
+                     open_snapshots, claim_output_dir, column_legend, write_text_file
+   use exit_state, only: exit_state_text
    use summary, only: write_summary
    use os, only: install_stop_handlers
    use solver, only: default_threads
@@ -143,6 +144,8 @@ contains
          call run_phase(m, ctl, s, 'pull', 0.0_dp, m%pull_distance, out, rec)
       end if
       call write_strains(out, 'strain_pull.dat', m, s, 'after pulling'//split_note(rec, m%thickness))
+      ! the sheet leaving the bead (docs/theory.md §9.1), after a pull
+      if (m%has_tools .and. m%pull_distance > 0.0_dp .and. allocated(s%hn)) call write_exit_state(out, m, s, trim(ctl%title))
       call write_tools(out, 'tools_pull.dat', m, s%shift, 'at the end of pulling')
       call close_outputs(out)
       if (out%failed .and. rec%status /= run_write_failed) then
@@ -150,6 +153,29 @@ contains
          rec%message = 'cannot write '//out%failure
       end if
    end subroutine run_case
+
+   !> WRITE_EXIT_STATE: exit_state.dat and exit_state.k in the output
+   !> directory (module exit_state); a failed write is the run's failure.
+   !>  out    [in,out] the run's files
+   !>  m, s   [in]     model and converged state after the pull
+   !>  title  [in]     the run's title
+   subroutine write_exit_state(out, m, s, title)
+      type(output_files), intent(inout) :: out
+      type(model_type), intent(in) :: m
+      type(state_type), intent(in) :: s
+      character(len=*), intent(in) :: title
+      character(len=:), allocatable :: table, cards, msg
+      logical :: found
+      integer :: stat
+      if (out%failed) return
+      call exit_state_text(m, s, title, table, cards, found)
+      call write_text_file(out%dir//'/exit_state.dat', table, stat, msg)
+      if (stat == 0) call write_text_file(out%dir//'/exit_state.k', cards, stat, msg)
+      if (stat /= 0) then
+         out%failed = .true.
+         out%failure = msg
+      end if
+   end subroutine write_exit_state
 
    !> PLACE_NECK_ZONE: &sheet refine_neck (docs/theory.md §7.5).  A first
    !> pass runs the deck on its uniform mesh into <output_dir>/coarse (the

@@ -35,9 +35,10 @@ module output
 
    !> Every file a run writes in its output directory (removed before the
    !> first increment, so no result of an earlier run is left beside this one's).
-   character(len=*), parameter :: result_files(9) = [character(len=23) :: &
+   character(len=*), parameter :: result_files(11) = [character(len=23) :: &
       'summary.txt', 'lock.dat', 'pull.dat', 'strain_lock.dat', 'strain_pull.dat', &
-      'strain_localization.dat', 'tools_lock.dat', 'tools_pull.dat', 'snapshots.dat']
+      'strain_localization.dat', 'tools_lock.dat', 'tools_pull.dat', 'snapshots.dat', &
+      'exit_state.dat', 'exit_state.k']
 
    !> The file by which a run owns its output directory (module os's
    !> lock_file: held while the run goes, released by the system when it
