@@ -9,7 +9,8 @@
 !> thicknesses past the exit of the last radius (remesh's
 !> last_radius_exit).  Its material has passed the whole bead when it
 !> started (reference position) left of the bead's first radius at the
-!> end of the run (the smallest x of a station touching a tool arc): the
+!> end of the run (the smallest x of a station touching a tool arc,
+!> last_radius_exit's x_entry): the
 !> files say whether it has; in a steady free-edge draw pulled about the
 !> bead's developed length it has.
 module exit_state
@@ -17,8 +18,7 @@ module exit_state
    use hermite, only: n_gauss
    use model, only: model_type, state_type, gauss_position
    use section, only: ih_strain, ih_zbar, ih_stress, ih_stress22, col_eqps, col_eps22
-   use contact, only: ich_active, ich_penetration, ich_hint, ich_position
-   use tools, only: seg_arc
+   use contact, only: ich_position
    use remesh, only: last_radius_exit
    use text, only: num
    implicit none
@@ -53,13 +53,12 @@ contains
       found = .false.
       table = '# drawbead: the state of the sheet leaving the bead: '//trim(title)//nl
       cards = '$ drawbead: the state of the sheet leaving the bead: '//trim(title)//nl
-      call last_radius_exit(m, s, x_exit, has_exit)
+      call last_radius_exit(m, s, x_exit, has_exit, x_entry)
       if (.not. has_exit) then
          table = table//'# no station touches a tool radius: no bead exit, no state written'//nl
          cards = cards//'$ no station touches a tool radius: no bead exit, no state written'//nl
          return
       end if
-      call first_radius_entry(m, s, x_entry)
       target = x_exit + exit_offset_over_h*h
       best = huge(1.0_dp)
       be = 0
@@ -138,26 +137,6 @@ contains
       current_x = s%cn(ich_position, ig, e, 1)
    end function current_x
 
-   !> FIRST_RADIUS_ENTRY: the smallest x of a Gauss station touching an arc
-   !> of either tool (the entry of the bead's first radius).
-   subroutine first_radius_entry(m, s, x_entry)
-      type(model_type), intent(in) :: m
-      type(state_type), intent(in) :: s
-      real(dp), intent(out) :: x_entry
-      integer :: e, ig, it, seg
-      x_entry = huge(1.0_dp)
-      do e = 1, m%n_el
-         do ig = 1, n_gauss
-            do it = 1, 2
-               if (s%cn(ich_active, ig, e, it) < 0.5_dp .or. s%cn(ich_penetration, ig, e, it) <= 0.0_dp) cycle
-               seg = nint(s%cn(ich_hint, ig, e, it))
-               if (seg < 1 .or. seg > size(m%tool(it)%seg)) cycle
-               if (m%tool(it)%seg(seg)%kind /= seg_arc) cycle
-               x_entry = min(x_entry, s%cn(ich_position, ig, e, it))
-            end do
-         end do
-      end do
-   end subroutine first_radius_entry
 
    !> A 10-character integer field.
    function int10(i) result(f)

@@ -51,7 +51,7 @@
 module law_combined
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
-   use normal_law, only: normal_law_type, set_normal_layout, drive_thickness
+   use normal_law, only: normal_law_type, set_normal_layout, drive_block_point
    use hardening, only: flow_stress, plastic_work, ip_youngs, ip_poisson
    use material_j2, only: check_props
    use deck, only: deck_type, is_unset, max_kinematic
@@ -331,8 +331,7 @@ contains
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in), optional :: s22n(n), s22(n)
       real(dp), intent(out), optional :: dsig_ds22(n)
-      real(dp) :: lam, mu, l2m, e, nu, e_ps, p_n, p, x, tr(3), xi(3), q, sy, hp, s(3), &
-                  sv(law%n_state), dd(2, 2), coupling, de(2)
+      real(dp) :: lam, mu, l2m, e, nu, e_ps, p_n, p, x, tr(3), xi(3), q, sy, hp
       integer :: k, i
       e = law%youngs
       nu = law%poisson
@@ -376,18 +375,9 @@ contains
             if (present(dsig_ds22)) dsig_ds22(k) = lam/l2m
             cycle
          end if
-         s = [stress(k, 1), p_n, stress(k, 2)]
-         sv = statev(k, :)
-         ! a row of dstran is strided: a copy, not a compiler's temporary
-         de = dstran(k, :)
-         call drive_thickness(law, s, sv, dd, coupling, sse(k), spd(k), stran11(k), de, &
-                              p, zbar(k), k, pnewdt)
+         call drive_block_point(law, k, n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, &
+                                p_n, p, pnewdt, dsig_ds22)
          if (pnewdt < 1.0_dp) return
-         stress(k, 1) = s(1)
-         stress(k, 2) = s(3)
-         statev(k, :) = sv
-         ddsdde(k, :, :) = dd
-         if (present(dsig_ds22)) dsig_ds22(k) = coupling
       end do
    end subroutine combined_update
 

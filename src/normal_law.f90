@@ -31,7 +31,7 @@ module normal_law
    use material_law, only: material_law_type
    implicit none
    private
-   public :: normal_law_type, set_normal_layout, drive_thickness
+   public :: normal_law_type, set_normal_layout, drive_thickness, drive_block_point
 
    !> the state variables appended to the law's own (module header)
    integer, parameter :: n_appended = 4
@@ -112,7 +112,7 @@ contains
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in), optional :: s22n(n), s22(n)
       real(dp), intent(out), optional :: dsig_ds22(n)
-      real(dp) :: p_n, p, s(3), sv(law%n_state), dd(2, 2), coupling, de(2)
+      real(dp) :: p_n, p
       integer :: k
       do k = 1, n
          p_n = 0.0_dp
@@ -121,20 +121,43 @@ contains
             p_n = s22n(k)
             p = s22(k)
          end if
-         s = [stress(k, 1), p_n, stress(k, 2)]
-         sv = statev(k, :)
-         ! a row of dstran is strided: a copy, not a compiler's temporary
-         de = dstran(k, :)
-         call drive_thickness(law, s, sv, dd, coupling, sse(k), spd(k), stran11(k), de, &
-                              p, zbar(k), k, pnewdt)
+         call drive_block_point(law, k, n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, &
+                                p_n, p, pnewdt, dsig_ds22)
          if (pnewdt < 1.0_dp) return
-         stress(k, 1) = s(1)
-         stress(k, 2) = s(3)
-         statev(k, :) = sv
-         ddsdde(k, :, :) = dd
-         if (present(dsig_ds22)) dsig_ds22(k) = coupling
       end do
    end subroutine normal_update
+
+   !> DRIVE_BLOCK_POINT: drive_thickness on point k of a block (the arrays
+   !> of material_law_type's update), its results written back.
+   !>  law                  [in]     the law
+   !>  k, n                 [in]     the point, the block's size
+   !>  stress ... zbar      [in,out]/[in] the block's arrays (update's)
+   !>  p_n, p               [in]     the prescribed tau22 at the start and the end
+   !>  pnewdt               [in,out] < 1: the increment is to be cut
+   !>  dsig_ds22            [out]    optional: d tau11 / d tau22 of the block
+   subroutine drive_block_point(law, k, n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, &
+                                p_n, p, pnewdt, dsig_ds22)
+      class(normal_law_type), intent(in) :: law
+      integer, intent(in) :: k, n
+      real(dp), intent(inout) :: stress(n, 2), statev(n, law%n_state), sse(n), spd(n)
+      real(dp), intent(inout) :: ddsdde(n, 2, 2)
+      real(dp), intent(in) :: stran11(n), dstran(n, 2), zbar(n), p_n, p
+      real(dp), intent(inout) :: pnewdt
+      real(dp), intent(inout), optional :: dsig_ds22(n)
+      real(dp) :: s(3), sv(law%n_state), dd(2, 2), coupling, de(2)
+      s = [stress(k, 1), p_n, stress(k, 2)]
+      sv = statev(k, :)
+      ! a row of dstran is strided: a copy, not a compiler's temporary
+      de = dstran(k, :)
+      call drive_thickness(law, s, sv, dd, coupling, sse(k), spd(k), stran11(k), de, &
+                           p, zbar(k), k, pnewdt)
+      if (pnewdt < 1.0_dp) return
+      stress(k, 1) = s(1)
+      stress(k, 2) = s(3)
+      statev(k, :) = sv
+      ddsdde(k, :, :) = dd
+      if (present(dsig_ds22)) dsig_ds22(k) = coupling
+   end subroutine drive_block_point
 
    !> DRIVE_THICKNESS: one point's update with the width strain increment
    !> dstran(2) given and tau22 prescribed: Newton's method on the

@@ -289,13 +289,17 @@ contains
    !>  s       [in]  the converged state
    !>  x_exit  [out] the abscissa, mm (unset when found is .false.)
    !>  found   [out] .false. when no station touches an arc
-   pure subroutine last_radius_exit(m, s, x_exit, found)
+   !>  x_entry [out] optional: the smallest such x, the entry of the first
+   !>                radius (exit_state)
+   pure subroutine last_radius_exit(m, s, x_exit, found, x_entry)
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
       real(dp), intent(out) :: x_exit
       logical, intent(out) :: found
+      real(dp), intent(out), optional :: x_entry
       integer :: e, ig, it, seg
       x_exit = -huge(1.0_dp)
+      if (present(x_entry)) x_entry = huge(1.0_dp)
       found = .false.
       if (.not. m%has_tools) return
       do e = 1, m%n_el
@@ -307,6 +311,7 @@ contains
                if (m%tool(it)%seg(seg)%kind /= seg_arc) cycle
                found = .true.
                x_exit = max(x_exit, s%cn(ich_position, ig, e, it))
+               if (present(x_entry)) x_entry = min(x_entry, s%cn(ich_position, ig, e, it))
             end do
          end do
       end do
