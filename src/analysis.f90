@@ -8,6 +8,7 @@
 !> -back_tension applied).  docs/theory.md §1, §8.1.
 module analysis
    use kinds, only: dp, output_unit
+   use phases, only: phase_lock, phase_pull
    use errors, only: warn, alloc_message
    use text, only: itoa
    use hermite, only: n_gauss
@@ -63,7 +64,7 @@ contains
       ld%fixed(node_dof(last, dof_v)) = .true.
       ld%fixed(node_dof(last, dof_w)) = .true.
       ld%fixed(node_dof(last, dof_w_slope)) = .true.
-      if (phase == 'pull') then
+      if (phase == phase_pull) then
          ld%u_fixed(node_dof(last, dof_v)) = p
          ld%tool_shift = m%lock_depth
       else
@@ -148,11 +149,11 @@ contains
       ! the force doing work on the load parameter: F while locking (starts
       ! at 0 on the flat sheet), N while pulling (the reaction reached so far)
       rec%last_conjugate = 0.0_dp
-      if (phase == 'pull' .and. allocated(rec%reactions)) rec%last_conjugate = rec%reactions(pulled)
+      if (phase == phase_pull .and. allocated(rec%reactions)) rec%last_conjugate = rec%reactions(pulled)
       nl_old = strain_limit_indicator(m, s%gpn(igp_strain, :, :), ell)
       ! each phase's force has its own maximum (the lock's tension, the pull's N)
       rec%max_at = 0
-      if (phase == 'pull') then
+      if (phase == phase_pull) then
          rec%work_pull_start = rec%work
          call energy_totals(m, s, rec%energy_pull_start)
       end if
@@ -223,7 +224,7 @@ contains
          reaction = r(pulled)
          punch = s%tool_force(2, 2)
          lift = -s%tool_force(2, 1)
-         force = merge(punch, reaction, phase == 'lock')
+         force = merge(punch, reaction, phase == phase_lock)
          call judge_force_change(ctl, phase, p, dt, force, rec%last_conjugate, eh, &
                                  force_change, target, redo)
          if (redo) then
@@ -240,13 +241,13 @@ contains
          ! that of the displacements (the pull force carries a noise of
          ! stations entering contact and small branch jumps)
          err = -1.0_dp
-         if (phase == 'lock') then
+         if (phase == phase_lock) then
             if (have_force_prev) err = extrapolation_error(force, rec%last_conjugate, prev_conjugate, &
                                                            dt, dt_prev, eh)
          else if (have_prev) then
             err = displacement_error(s%u1, s%u, u_prev, dt, dt_prev, h, dof_scale)
          end if
-         call judge_error(ctl, err, dt, redo, dt_err, final=phase == 'lock' .and. p + dt >= p1 - 1.0e-12_dp*h)
+         call judge_error(ctl, err, dt, redo, dt_err, final=phase == phase_lock .and. p + dt >= p1 - 1.0e-12_dp*h)
          ! a redo shortens the increment by q < 0.8 and a second-order
          ! estimate by at least as much (by q^2 without an earlier increment):
          ! one that kept more than half of its value marks a jump of the path
@@ -297,12 +298,12 @@ contains
                       'it has no mesh limit in this model and moves with the mesh (docs/theory.md §7.1)', 'run_phase')
          end if
          tool_work = 0.0_dp
-         if (phase == 'lock') tool_work = 0.5_dp*dt*(rec%last_conjugate + punch)
+         if (phase == phase_lock) tool_work = 0.5_dp*dt*(rec%last_conjugate + punch)
          call add_increment_work(ld, r, s%u - u_prev, tool_work, rec)
          prev_conjugate = rec%last_conjugate
          have_force_prev = .true.
          rec%last_conjugate = force
-         if (phase == 'lock') then
+         if (phase == phase_lock) then
             rec%lock_force = punch
             ! a clamped sheet can neck while the bead closes: the maximum of
             ! its tension (docs/theory.md §7.4)
@@ -375,7 +376,7 @@ contains
          ! motion is a Hermite field too, carried exactly, and starts from
          ! the re-equilibrated state)
          split_due = .false.
-         if (phase == 'pull' .and. m%exit_element > 0.0_dp) then
+         if (phase == phase_pull .and. m%exit_element > 0.0_dp) then
             if (rec%split%armed) then
                split_due = coarse_near_exit(m, s)
             else
@@ -465,7 +466,7 @@ contains
       type(controls_type), intent(in) :: ctl
       character(len=*), intent(in) :: phase
       watches_maximum = ctl%tearing_criterion == 'load_maximum'
-      if (phase == 'lock') watches_maximum = watches_maximum .and. m%has_tools .and. .not. m%left_edge_free
+      if (phase == phase_lock) watches_maximum = watches_maximum .and. m%has_tools .and. .not. m%left_edge_free
    end function watches_maximum
 
    !> PHASE_DOF_SCALE: the weight of each dof in the displacement error
@@ -526,7 +527,7 @@ contains
       last = findloc(pieces > 1, .true., 1, back=.true.)
       rec%split%count = rec%split%count + 1
       if (rec%split%count == 1) then
-         rec%split%phase = 'pull'
+         rec%split%phase = phase_pull
          rec%split%load = p
          rec%split%x_exit = x_exit
          rec%split%zone = [m%x(first), m%x(last + 1)]
@@ -567,7 +568,7 @@ contains
       ! step committed: mid-pull, with sections past their maximum load on
       ! the radius, a single Newton solve from the mapped state can leave
       ! the branch the run was on (bead A steel at 0.59h: diverged)
-      call phase_load(m, 'pull', p, ld)
+      call phase_load(m, phase_pull, p, ld)
       call band_init(kb, m%n_dof, half_band, half_band, alloc_msg)
       if (len(alloc_msg) > 0) then
          rec%status = run_out_of_memory

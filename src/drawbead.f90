@@ -6,6 +6,7 @@
 !> below and docs/user-guide.md.
 program drawbead
    use kinds, only: dp, output_unit, error_unit
+   use phases, only: phase_lock, phase_pull
    use errors, only: error_list, report_errors, print_error, warn, exit_ok, exit_input, &
                      exit_noconvergence, exit_write, exit_interrupted, exit_memory
    use deck, only: deck_type
@@ -136,12 +137,12 @@ contains
          return
       end if
       if (m%has_tools .and. m%lock_depth > 0.0_dp) then
-         call run_phase(m, ctl, s, 'lock', 0.0_dp, m%lock_depth, out, rec)
+         call run_phase(m, ctl, s, phase_lock, 0.0_dp, m%lock_depth, out, rec)
       end if
       call write_strains(out, 'strain_lock.dat', m, s, 'after locking')
       call write_tools(out, 'tools_lock.dat', m, s%shift, 'at the end of locking')
       if (rec%status == run_ok .and. .not. (rec%torn .and. ctl%stop_at_localization)) then
-         call run_phase(m, ctl, s, 'pull', 0.0_dp, m%pull_distance, out, rec)
+         call run_phase(m, ctl, s, phase_pull, 0.0_dp, m%pull_distance, out, rec)
       end if
       call write_strains(out, 'strain_pull.dat', m, s, 'after pulling'//split_note(rec, m%thickness))
       ! the sheet leaving the bead (docs/theory.md §9.1), after a pull
@@ -256,7 +257,7 @@ contains
          if (.not. rec1%torn .and. last_pull < m%pull_distance) &
             call stop_in_first_pass(m, ctl, neck, run_no_convergence, trim(rec1%message), rec1%assemblies)
       end select
-      neck%coarse_torn = rec1%torn .and. rec1%tear_phase == 'pull'
+      neck%coarse_torn = rec1%torn .and. rec1%tear_phase == phase_pull
       if (.not. neck%coarse_torn) then
          neck%refinement = 'none'
          if (rec1%status == run_no_convergence) then

@@ -9,6 +9,7 @@
 !> pulling), to step_tolerance (docs/theory.md §8.3).
 module step_control
    use kinds, only: dp
+   use phases, only: phase_lock, phase_pull
    use controls, only: controls_type
    implicit none
    private
@@ -67,7 +68,7 @@ contains
       real(dp) :: jump
       logical :: steep
       change = abs(force - last_force)/max(abs(last_force), abs(force), 1.0e-5_dp*eh)
-      steep = phase == 'lock' .and. change > 5.0_dp*dt/(p + dt)
+      steep = phase == phase_lock .and. change > 5.0_dp*dt/(p + dt)
       target = merge(ctl%squeeze_force_change, ctl%max_force_change, steep)
       jump = merge(min(0.5_dp, 5.0_dp*target), 0.5_dp, steep)
       redo = change > jump .and. abs(last_force) > 1.0e-4_dp*eh .and. dt > 4.0_dp*ctl%min_increment
@@ -251,7 +252,7 @@ contains
       character(len=*), intent(in) :: phase
       real(dp), intent(in) :: min_ind, h
       real(dp), intent(inout) :: dt
-      if (phase /= 'pull' .or. ctl%tearing_criterion /= 'load_maximum') return
+      if (phase /= phase_pull .or. ctl%tearing_criterion /= 'load_maximum') return
       if (min_ind > 0.0_dp) return
       dt = max(min(dt, branch_cap*h), ctl%min_increment)
    end subroutine bound_past_section_maximum

@@ -1,6 +1,7 @@
 !> summary -- the run's findings as 'key = value' lines (summary.txt).
 module summary
    use kinds, only: dp
+   use phases, only: phase_lock, phase_pull
    use controls, only: controls_type
    use section, only: ih_zbar
    use model, only: model_type, state_type
@@ -132,24 +133,24 @@ contains
       call add(text, 'status = '//trim(status))
       call add(text, 'localization_phase = '// &
          trim(merge(rec%loc_phase, 'none    ', rec%localized)))
-      call put(text, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'pull')
-      call put(text, 'lock_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == 'lock')
+      call put(text, 'delta_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == phase_pull)
+      call put(text, 'lock_cr_over_h', rec%load_cr/h, rec%localized .and. rec%loc_phase == phase_lock)
       call put(text, 's_star_over_h', rec%s_star/h, rec%localized)
       ! the mesh-objective tearing measure: mid-surface strain averaged over
       ! tearing_length reaching the plane-strain maximum-load strain
       call add(text, 'nonlocal_localization_phase = '// &
          trim(merge(rec%nl_phase, 'none    ', rec%nl_localized)))
       call put(text, 'delta_cr_nonlocal_over_h', rec%nl_load_cr/h, &
-                              rec%nl_localized .and. rec%nl_phase == 'pull')
+                              rec%nl_localized .and. rec%nl_phase == phase_pull)
       call put(text, 'lock_cr_nonlocal_over_h', rec%nl_load_cr/h, &
-                              rec%nl_localized .and. rec%nl_phase == 'lock')
+                              rec%nl_localized .and. rec%nl_phase == phase_lock)
       call put(text, 's_star_nonlocal_over_h', rec%nl_s_star/h, rec%nl_localized)
       ! the program's tearing prediction (docs/theory.md §7.4): the load
       ! parameter is H while locking and delta while pulling
       call add(text, 'tearing_criterion = '//trim(ctl%tearing_criterion))
       call add(text, 'tearing_phase = '//trim(merge(rec%tear_phase, 'none    ', rec%torn)))
-      call put(text, 'tearing_delta_over_h', rec%tear_load/h, rec%torn .and. rec%tear_phase == 'pull')
-      call put(text, 'tearing_lock_over_h', rec%tear_load/h, rec%torn .and. rec%tear_phase == 'lock')
+      call put(text, 'tearing_delta_over_h', rec%tear_load/h, rec%torn .and. rec%tear_phase == phase_pull)
+      call put(text, 'tearing_lock_over_h', rec%tear_load/h, rec%torn .and. rec%tear_phase == phase_lock)
       call put(text, 'tearing_s_over_h', rec%tear_s/h, rec%torn)
       call put(text, 'tearing_element_over_h', rec%tear_element/h, rec%torn .and. rec%tear_element > 0.0_dp)
       call put(text, 'tearing_length_over_h', ctl%tearing_length_over_h, .true.)
@@ -158,7 +159,7 @@ contains
       if (.not. rec%torn) then
          call add(text, 'tearing_mesh_dependent = none')
       else if (ctl%tearing_criterion == 'section' .or. &
-               (rec%tear_phase == 'pull' .and. rec%tear_element > 0.1_dp*h*(1.0_dp + 1.0e-6_dp))) then
+               (rec%tear_phase == phase_pull .and. rec%tear_element > 0.1_dp*h*(1.0_dp + 1.0e-6_dp))) then
          call add(text, 'tearing_mesh_dependent = yes')
       else
          call add(text, 'tearing_mesh_dependent = no')

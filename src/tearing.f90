@@ -7,6 +7,7 @@
 !> the run record.
 module tearing
    use kinds, only: dp
+   use phases, only: phase_lock, phase_pull
    use errors, only: warn
    use text, only: num
    use hermite, only: n_gauss, gauss_wt
@@ -119,7 +120,7 @@ contains
       real(dp) :: load
       integer :: k
       if (rec%torn) return
-      if (phase == 'lock') then
+      if (phase == phase_lock) then
          if (rec%n_lock == 0) return
          call track_load_maximum(rec%lock_lift(1:rec%n_lock), rec%lock_tension(1:rec%n_lock), &
                                  pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), m%thickness, &
@@ -156,7 +157,7 @@ contains
       real(dp), allocatable :: growth(:), loads(:), forces(:)
       torn = .false.
       if (rec%torn .or. .not. rec%localized) return
-      if (phase == 'lock') then
+      if (phase == phase_lock) then
          loads = rec%lock_lift(1:rec%n_lock)
          forces = rec%lock_tension(1:rec%n_lock)
       else
@@ -167,7 +168,7 @@ contains
       ! while locking the paper's criterion is met early on the radii (the
       ! section supported by the tool): a failed increment is a snap-back
       ! only once the tension has fallen clearly below its maximum
-      if (phase == 'lock' .and. forces(size(forces)) > (1.0_dp - tear_force_drop)*forces(rec%max_at)) return
+      if (phase == phase_lock .and. forces(size(forces)) > (1.0_dp - tear_force_drop)*forces(rec%max_at)) return
       growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
       call set_torn(m, rec, phase, load_at_maximum(loads, forces, rec%max_at, m%thickness), &
                     first_near_max(growth))
@@ -216,7 +217,7 @@ contains
       ! (a maximum of the tension while locking is set by the wrap on the
       ! tool and converges on the uniform mesh: 4.587-4.609h from 80 to 640
       ! elements on tests/regression/decks/lock_tear_hss.nml)
-      if (phase == 'pull' .and. rec%tear_element > 0.1_dp*m%thickness*(1.0_dp + 1.0e-6_dp) .and. &
+      if (phase == phase_pull .and. rec%tear_element > 0.1_dp*m%thickness*(1.0_dp + 1.0e-6_dp) .and. &
           rec%neck%refinement /= 'first') then
          call warn('tearing point on elements of '//num(anint(1.0e3_dp*rec%tear_element/m%thickness)/1.0e3_dp)// &
                    'h at s = '//num(anint(1.0e2_dp*rec%tear_s/m%thickness)/1.0e2_dp)// &
