@@ -77,7 +77,7 @@ module output
    character(len=*), parameter :: strain_columns = &
       '# 1:s/h (reference position) 2:x/h 3:y/h (current centreline) 4:lambda-1'// &
       ' 5:ln(lambda) 6:top_fibre_log_strain 7:bottom_fibre_log_strain'// &
-      ' 8:thickness_log_strain(mid-surface) 9:max_equivalent_plastic_strain(through thickness)'// &
+      ' 8:thickness_log_strain(mid-surface) 9:max_equivalent_plastic_strain(through thickness; -1: the law has none)'// &
       ' 10:rho*h (bending strain) 11:N/(E h) 12:M/(E h^2)'// &
       ' 13:localization_indicator (smallest eigenvalue of the scaled section tangent, <= 0: localized)'// &
       ' 14:tau22_top[MPa] 15:tau22_bottom[MPa] (thickness stress on the faces: the contact section)'// &
