@@ -93,4 +93,17 @@ PY
 then :; else fail=1; fi
 done
 done
+# a UMAT that names no equivalent plastic strain (umat_eqps_index = 0):
+# the same forces, and the strain files say -1 in its column (9)
+sed 's/umat_eqps_index = 1/umat_eqps_index = 0/' tests/decks/umat/user_linear.nml >"$work/no_eqps.nml"
+if bin/drawbead-umat "$work/no_eqps.nml" -o "$work/no_eqps" >"$work/no_eqps.log" 2>&1 &&
+    cmp -s <(grep force_over_Eh "$work/no_eqps/summary.txt") \
+        <(bin/drawbead-umat tests/decks/umat/user_linear.nml -o "$work/with_eqps" >/dev/null 2>&1 &&
+            grep force_over_Eh "$work/with_eqps/summary.txt") &&
+    awk '!/^#/ && $9 != -1 { bad = 1 } END { exit bad }' "$work/no_eqps/strain_lock.dat"; then
+    echo "ok   umat_eqps_index = 0: the same forces, -1 in the strain files' column 9"
+else
+    echo "FAIL umat_eqps_index = 0: forces differ or column 9 is not -1"
+    fail=1
+fi
 exit $fail
