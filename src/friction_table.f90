@@ -4,16 +4,14 @@
 !> (docs/theory.md §6.1; &tools friction_law = 'table', friction_file).
 !>
 !> The file: two columns, the contact pressure p (MPa) and the coefficient
-!> mu, one point per line; blank lines and '#' comments skipped, columns
-!> separated by blanks, tabs or commas; at least 2 points, p >= 0 strictly
-!> increasing, mu >= 0.  Read whole and bounded (text's max_input_bytes and
-!> max_line_length), as the hardening curve files.
+!> mu, one point per line, read by module pair_file (as the hardening
+!> curve files); at least 2 points, p >= 0 strictly increasing, mu within
+!> 0 and 10.
 module friction_table
    use kinds, only: dp
    use friction_law, only: friction_law_type
-   use text, only: next_line, strip_comment, split_fields, parse_real, itoa, max_input_bytes, &
-                   max_line_length
-   use os, only: read_file
+   use text, only: itoa
+   use pair_file, only: read_pairs
    use deck, only: deck_type
    use deck_checks, only: fail, at
    use errors, only: error_list
@@ -117,74 +115,30 @@ contains
       character(len=*), intent(in) :: path
       real(dp), allocatable, intent(out) :: p(:), mu(:)
       character(len=*), intent(out) :: errmsg
-      character(len=:), allocatable :: contents, why, line, at, msg
-      real(dp), allocatable :: tmp(:)
-      real(dp) :: x(2)
-      integer :: ios, pos, nline, npt, ntok, k, first(2), last(2)
-      msg = ''
-      allocate (p(16), mu(16))
-      npt = 0
-      nline = 0
-      call read_file(path, max_input_bytes, contents, ios, why)
-      if (ios /= 0) then
-         errmsg = "cannot read friction table '"//path//"': "//why
-         deallocate (p, mu)
-         allocate (p(0), mu(0))
-         return
-      end if
-      pos = 1
-      do while (pos <= len(contents))
-         call next_line(contents, pos, line)
-         nline = nline + 1
-         at = "friction table '"//path//"' line "//itoa(nline)//': '
-         if (len(line) > max_line_length) then
-            msg = at//'longer than '//itoa(max_line_length)//' characters'
-            exit
-         end if
-         line = strip_comment(line, '#')
-         call split_fields(line, first, last, ntok)
-         if (ntok == 0) cycle
-         if (ntok /= 2) then
-            msg = at//'expected 2 numbers (pressure in MPa, coefficient), found '//itoa(ntok)// &
-                  " fields in '"//trim(adjustl(line))//"'"
-            exit
-         end if
-         do k = 1, 2
-            if (.not. parse_real(line(first(k):last(k)), x(k))) then
-               msg = at//"cannot read '"//line(first(k):last(k))//"' as a number"
-               exit
+      character(len=:), allocatable :: msg, at
+      character(len=64), allocatable :: tok(:, :)
+      integer, allocatable :: line_no(:)
+      integer :: i
+      call read_pairs(path, 'friction table', 'pressure in MPa, coefficient', p, mu, tok, line_no, msg)
+      if (len(msg) == 0) then
+         do i = 1, size(p)
+            at = "friction table '"//path//"' line "//itoa(line_no(i))//': '
+            if (.not. p(i) >= 0.0_dp) then
+               msg = at//'pressure must be >= 0 (found '//trim(tok(1, i))//')'
+            else if (i > 1 .and. .not. p(i) > p(i - 1)) then
+               msg = at//'pressure not increasing ('//trim(tok(1, i))//' after '//trim(tok(1, i - 1))//')'
+            else if (.not. (mu(i) >= 0.0_dp .and. mu(i) <= 10.0_dp)) then
+               msg = at//'coefficient must be within 0 and 10 (found '//trim(tok(2, i))//')'
             end if
+            if (len(msg) > 0) exit
          end do
-         if (len(msg) > 0) exit
-         if (.not. x(1) >= 0.0_dp) then
-            msg = at//'pressure must be >= 0 (found '//line(first(1):last(1))//')'
-         else if (npt > 0 .and. .not. x(1) > p(max(npt, 1))) then
-            msg = at//'pressure not increasing ('//line(first(1):last(1))//' after a larger or equal one)'
-         else if (.not. (x(2) >= 0.0_dp .and. x(2) <= 10.0_dp)) then
-            msg = at//'coefficient must be within 0 and 10 (found '//line(first(2):last(2))//')'
-         end if
-         if (len(msg) > 0) exit
-         if (npt == size(p)) then
-            allocate (tmp(2*npt))
-            tmp(:npt) = p(:npt)
-            call move_alloc(tmp, p)
-            allocate (tmp(2*npt))
-            tmp(:npt) = mu(:npt)
-            call move_alloc(tmp, mu)
-         end if
-         npt = npt + 1
-         p(npt) = x(1)
-         mu(npt) = x(2)
-      end do
-      if (len(msg) == 0 .and. npt < 2) msg = "friction table '"//path// &
-                                              "': need at least 2 points, found "//itoa(npt)
+      end if
+      if (len(msg) == 0 .and. size(p) < 2) msg = "friction table '"//path// &
+                                                 "': need at least 2 points, found "//itoa(size(p))
       errmsg = msg
       if (len(msg) > 0) then
          deallocate (p, mu)
          allocate (p(0), mu(0))
-      else
-         p = p(:npt)
-         mu = mu(:npt)
       end if
    end subroutine read_friction_table
 end module friction_table

@@ -24,9 +24,8 @@
 module hardening
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
-   use text, only: next_line, strip_comment, split_fields, parse_real, itoa, num, &
-                   max_input_bytes, max_line_length
-   use os, only: read_file
+   use text, only: itoa, num
+   use pair_file, only: read_pairs
    implicit none
    private
 
@@ -351,9 +350,8 @@ contains
    end function is_integer
 
    !> Read a hardening curve: a text file of two columns, plastic strain and
-   !> true stress, one point per line.  Blank lines and lines whose first
-   !> non-blank character is '#' are skipped, as is anything after a '#' on
-   !> a data line; columns may be separated by blanks, tabs or commas.
+   !> true stress, one point per line, read by module pair_file (comments,
+   !> separators, the bounds on its size).
    !> Checks: every data line holds exactly two numbers; at least 2 points;
    !> the first plastic strain is 0; plastic strain strictly increasing;
    !> stress positive and non-decreasing.  The file is read whole, at most
@@ -375,100 +373,37 @@ contains
       real(dp), allocatable, intent(out) :: ep(:), sigma(:)
       character(len=*), intent(out) :: errmsg
 
-      character(len=:), allocatable :: contents, why, line, at, msg
-      character(len=64) :: tok(2), prev(2)
-      real(dp), allocatable :: tmp(:)
-      real(dp) :: x(2)
-      integer :: ios, pos, nline, npt, ntok, k, first(2), last(2)
+      character(len=:), allocatable :: msg, at
+      character(len=64), allocatable :: tok(:, :)
+      integer, allocatable :: line_no(:)
+      integer :: i
 
-      msg = ''
-      prev = ''
-      allocate (ep(16), sigma(16))
-      npt = 0
-      nline = 0
-
-      ! read whole, bounded (a pipe reads like a file; /dev/zero or a huge
-      ! file is refused, not read forever; a directory is named as such)
-      call read_file(path, max_input_bytes, contents, ios, why)
-      if (ios /= 0) then
-         errmsg = "cannot read curve file '" // path // "': " // why
-         call fail()
-         return
-      end if
-
-      pos = 1
-      do while (pos <= len(contents))
-         call next_line(contents, pos, line)
-         nline = nline + 1
-         at = "curve file '" // path // "' line " // itoa(nline) // ': '
-         if (len(line) > max_line_length) then
-            msg = at // 'longer than ' // itoa(max_line_length) // ' characters'
-            exit
-         end if
-         line = strip_comment(line, '#')
-         call split_fields(line, first, last, ntok)
-         if (ntok == 0) cycle
-         if (ntok /= 2) then
-            msg = at // 'expected 2 numbers (plastic strain, true stress), found ' &
-                     // itoa(ntok) // " fields in '" // trim(adjustl(line)) // "'"
-            exit
-         end if
-         do k = 1, 2
-            tok(k) = line(first(k):last(k))
-            if (.not. parse_real(line(first(k):last(k)), x(k))) then
-               msg = at // "cannot read '" // line(first(k):last(k)) // "' as a number"
-               exit
+      call read_pairs(path, 'curve file', 'plastic strain, true stress', ep, sigma, tok, line_no, msg)
+      if (len(msg) == 0) then
+         do i = 1, size(ep)
+            at = "curve file '" // path // "' line " // itoa(line_no(i)) // ': '
+            if (i == 1 .and. abs(ep(1)) > 0.0_dp) then
+               msg = at // 'first plastic strain must be 0 (found ' // trim(tok(1, 1)) // ')'
+            else if (i > 1 .and. .not. ep(i) > ep(i - 1)) then
+               msg = at // 'plastic strain not increasing (' // trim(tok(1, i)) // ' after ' &
+                        // trim(tok(1, i - 1)) // ')'
+            else if (.not. sigma(i) > 0.0_dp) then
+               msg = at // 'stress must be positive (found ' // trim(tok(2, i)) // ')'
+            else if (i > 1 .and. .not. sigma(i) >= sigma(i - 1)) then
+               msg = at // 'stress decreasing (' // trim(tok(2, i)) // ' after ' &
+                        // trim(tok(2, i - 1)) // ')'
             end if
+            if (len(msg) > 0) exit
          end do
-         if (len(msg) > 0) exit
-
-         if (npt == 0 .and. abs(x(1)) > 0.0_dp) then
-            msg = at // 'first plastic strain must be 0 (found ' // trim(tok(1)) // ')'
-         else if (npt > 0 .and. .not. x(1) > ep(max(npt, 1))) then
-            msg = at // 'plastic strain not increasing (' // trim(tok(1)) // ' after ' &
-                     // trim(prev(1)) // ')'
-         else if (.not. x(2) > 0.0_dp) then
-            msg = at // 'stress must be positive (found ' // trim(tok(2)) // ')'
-         else if (npt > 0 .and. .not. x(2) >= sigma(max(npt, 1))) then
-            msg = at // 'stress decreasing (' // trim(tok(2)) // ' after ' &
-                     // trim(prev(2)) // ')'
-         end if
-         if (len(msg) > 0) exit
-
-         if (npt == size(ep)) then
-            allocate (tmp(2*npt))
-            tmp(:npt) = ep(:npt)
-            call move_alloc(tmp, ep)
-            allocate (tmp(2*npt))
-            tmp(:npt) = sigma(:npt)
-            call move_alloc(tmp, sigma)
-         end if
-         npt = npt + 1
-         ep(npt) = x(1)
-         sigma(npt) = x(2)
-         prev = tok
-      end do
-
-      if (len(msg) == 0 .and. npt < 2) then
-         msg = "curve file '" // path // "': need at least 2 points, found " // itoa(npt)
+      end if
+      if (len(msg) == 0 .and. size(ep) < 2) then
+         msg = "curve file '" // path // "': need at least 2 points, found " // itoa(size(ep))
       end if
       errmsg = msg
       if (len(msg) > 0) then
-         call fail()
-      else
-         ep = ep(:npt)
-         sigma = sigma(:npt)
-      end if
-
-   contains
-
-      !> On error: return empty (allocated) arrays.
-      subroutine fail()
-         if (allocated(ep)) deallocate (ep)
-         if (allocated(sigma)) deallocate (sigma)
+         deallocate (ep, sigma)
          allocate (ep(0), sigma(0))
-      end subroutine fail
-
+      end if
    end subroutine read_curve_file
 
 end module hardening

@@ -187,6 +187,8 @@ contains
       real(dp) :: s(3), sv(law%n_inner), dd(3, 3), cont(3, 3), e, w, x, r, scale, ratio, c22, &
                   lam2mu, tol
       integer :: it, i_ratio, i_c22
+      ddsdde = 0.0_dp
+      coupling = 0.0_dp
       i_ratio = law%n_inner + 3
       i_c22 = law%n_inner + 4
       ratio = statev(i_ratio)
