@@ -74,7 +74,7 @@ MAIN_OBJ := $(BUILD)/drawbead.o
 LIB := $(BUILD)/libdrawbead.a
 DEPS := $(BUILD)/deps.mk
 
-# The material routine umat (module material) is an external subroutine,
+# The material routine umat (module law_umat) is an external subroutine,
 # linked with the program and kept out of the library: UMAT=path names a
 # user's file (compiled with UMAT_FFLAGS, e.g. for a fixed-form, implicitly
 # typed Abaqus routine) linked with src/user/umat_linked.f90

@@ -1,5 +1,5 @@
 !> umat_none -- what bin/drawbead links in place of a user's UMAT when it is
-!> built without UMAT= (see module material and the Makefile): a umat that
+!> built without UMAT= (see module law_umat and the Makefile): a umat that
 !> computes nothing and says so, and user_umat_linked() = .false., which
 !> set-up asks so that a deck naming the user model is an input error.
 !> Not part of the library.
@@ -11,7 +11,7 @@
 !>  stress, statev, sse, spd, scd [in,out] left as they are
 !>  ddsdde, rpl, ddsddt, drplde, drpldt [out] 0
 !>  pnewdt [in,out] 0
-!>  every other argument [in] not used (the list is module material's)
+!>  every other argument [in] not used (the list is module law_umat's)
 subroutine umat(stress, statev, ddsdde, sse, spd, scd, rpl, ddsddt, drplde, drpldt, &
                 stran, dstran, time, dtime, temp, dtemp, predef, dpred, cmname, ndi, &
                 nshr, ntens, nstatv, props, nprops, coords, drot, pnewdt, celent, dfgrd0, &
