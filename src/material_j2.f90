@@ -75,7 +75,9 @@ contains
    !> UMAT: stress update of one material point for one increment of log
    !> strain, with the Abaqus UMAT argument list (order as in CalculiX
    !> umat.f).  What the program passes in each argument, and the contract
-   !> of a user's routine with the same list, is written in module law_umat (whose UMAT contract is NTENS = 4; this built-in routine keeps the plane-stress NTENS = 2 list for its own tests).
+   !> of a user's routine with the same list, is written in module law_umat
+   !> (whose contract is NTENS = 4; this built-in routine keeps the
+   !> plane-stress NTENS = 2 list for its own tests).
    !>
    !> Given the start-of-increment stress and state and the log-strain
    !> increment, returns the end-of-increment stress and state and the
