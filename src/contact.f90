@@ -30,7 +30,6 @@ module contact
    use kinds, only: dp
    use tools, only: tool_type
    use tool_distance, only: tool_gap
-   use friction, only: friction_law
    use friction_law, only: friction_law_type
    implicit none
    private
@@ -88,8 +87,8 @@ contains
       class(friction_law_type), intent(in) :: fric
       real(dp), intent(in) :: shift, k, delta, face_stretch, p(2), chn(:)
       real(dp), intent(out) :: ch1(:), f(2), kf(2, 2), fn, dfn(2)
-      real(dp) :: prel(2), d, n(2), t(2), curv, ds, sense, ut, fr, dfr, dslip(2), tt, pn, dpn
-      real(dp) :: dut(2), dold, a, utm, trac_old, mu, dmu_dp, pressure, mu_eff
+      real(dp) :: prel(2), d, n(2), t(2), curv, ds, sense, ut, dslip(2), tt, pn, dpn
+      real(dp) :: dut(2), dold, a, utm, trac_old, mu, pressure, dtt_dpn, dtt_dut
       integer :: seg
       prel = [p(1), p(2) - shift]
       call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg, hint=nint(chn(ich_hint)))
@@ -116,13 +115,8 @@ contains
       kf = -dpn*outer(n, n) + pn*curv*outer(t, t)
       fn = pn
       dfn = -dpn*n
-      pressure = pn/face_stretch
-      ch1(ich_pressure) = pressure
+      ch1(ich_pressure) = pn/face_stretch
       if (.not. fric%active()) return
-      call fric%coefficient(pressure, mu, dmu_dp)
-      ch1(ich_mu) = mu
-      ! d(mu(p) pn)/d pn = mu + p dmu/dp (the stretch is lagged)
-      mu_eff = mu + pressure*dmu_dp
       ! friction, integrated from the last converged state to the trial one
       ! like a return mapping (docs/theory.md §6): the slip of the increment
       ! is measured along t from the converged position; d(ds)/dp =
@@ -157,14 +151,17 @@ contains
       ! the largest converged u_T, and u_T is linear along the increment
       ch1(ich_slip_max) = max(utm, ut)
       ch1(ich_sense) = sense
-      call friction_law(ut, utm, fric%eps, fr, dfr)
-      tt = mu*pn*fr*sense
+      ! the law's traction along the sense of first slip and its
+      ! derivatives (the face's stretch is lagged, so not differentiated)
+      call fric%traction(pn, face_stretch, ut, utm, tt, dtt_dpn, dtt_dut, pressure, mu)
+      ch1(ich_mu) = mu
+      tt = tt*sense
       ch1(ich_traction) = tt
       ch1(ich_dissipation) = chn(ich_dissipation) + 0.5_dp*(trac_old + tt)*ds
       f = f - tt*t
       ! d(tt t)/dp = t (mu sense)(fr dpn dd/dp + pn dfr dut) + tt dt/dp,
       ! dd/dp = -n, dt/dp = -curv n t^T
-      kf = kf - sense*outer(t, -mu_eff*fr*dpn*n + mu*pn*dfr*dut) + tt*curv*outer(n, t)
+      kf = kf - sense*outer(t, -dtt_dpn*dpn*n + dtt_dut*dut) + tt*curv*outer(n, t)
    end subroutine contact_station
 
    !> PENALTY_ENERGY: stored energy k G(d) of a station penetrating by d
