@@ -146,7 +146,7 @@ contains
       end if
       call write_strains(out, 'strain_pull.dat', m, s, 'after pulling'//split_note(rec, m%thickness))
       ! the sheet leaving the bead (docs/theory.md §9.1), after a pull
-      if (m%has_tools .and. m%pull_distance > 0.0_dp .and. allocated(s%hn)) call write_exit_state(out, m, s, trim(ctl%title))
+      if (m%has_tools .and. rec%n_pull > 0 .and. allocated(s%hn)) call write_exit_state(out, m, s, trim(ctl%title))
       call write_tools(out, 'tools_pull.dat', m, s%shift, 'at the end of pulling')
       call close_outputs(out)
       if (out%failed .and. rec%status /= run_write_failed) then

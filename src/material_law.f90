@@ -1,5 +1,5 @@
 !> material_law -- what the section asks of a material law, as an abstract
-!> type: each law (law_j2, law_chaboche, law_umat) is one module extending
+!> type: each law (law_j2, law_combined, law_umat) is one module extending
 !> it, owning its constants, its state variables and its checks
 !> (docs/theory.md §4, §13).
 !>

@@ -57,6 +57,7 @@ contains
       type(error_list), intent(inout) :: errs
 
       class(material_law_type), allocatable :: mat
+      class(friction_law_type), allocatable :: fric
       type(tool_type) :: upper, lower_tool
       logical :: deck_ok
       real(dp) :: h
@@ -64,6 +65,8 @@ contains
 
       deck_ok = errs%count == 0
       call material_of_deck(d, deck_ok, mat, errs)
+      ! the friction law's file and variables are checked with the rest
+      if (d%bead /= 'none') call friction_of_deck(d, fric, errs)
       call tools_of_deck(d, deck_ok, upper, lower_tool, errs)
       if (deck_ok .and. errs%count == 0 .and. d%bead /= 'none') &
          call check_clearance(d, upper, lower_tool, errs)
@@ -88,7 +91,7 @@ contains
       ! contact (2.18)-(2.23): the penalty is given as k h / E, the lengths
       ! in units of h
       m%penalty = d%penalty*d%youngs_modulus/h
-      call friction_of_deck(d, m%friction, errs)
+      if (allocated(fric)) call move_alloc(fric, m%friction)
       m%contact_smoothing = d%contact_smoothing*h
       m%left_edge_free = d%left_edge == 'free'
       m%contact_section = d%normal_stress == 'contact'

@@ -6,7 +6,8 @@
 # SIGYY = tau33, SIGZZ = tau22, EPS = the plastic strain) to their five
 # significant digits; NTHICK is the table's row count; the station lies
 # 3h past the exit of the last radius; the thickness of the table is the
-# strain file's at that station.  A deck without tools writes neither.
+# strain file's at that station.  A deck without tools, or a run that
+# tears while the bead closes (it never pulls), writes neither.
 #
 # Usage: tests/exit_state.sh [path/to/drawbead]   (run from anywhere)
 set -u
@@ -82,5 +83,13 @@ if [[ -e $work/strip/exit_state.dat || -e $work/strip/exit_state.k ]]; then
     rc=1
 else
     echo "ok   no tools: no exit state"
+fi
+# a run that tears while the bead closes never pulls: no exit state
+"$bin" tests/regression/decks/lock_tear_hss.nml -o "$work/lock_tear" >/dev/null 2>&1
+if grep -q '^tearing_phase = lock' "$work/lock_tear/summary.txt" && [[ ! -e $work/lock_tear/exit_state.dat ]]; then
+    echo "ok   torn while locking: no pull, no exit state"
+else
+    echo "FAIL a run torn while locking wrote an exit state (or did not tear while locking)"
+    rc=1
 fi
 exit $rc

@@ -110,6 +110,17 @@ expect 1 "group &control, variable title: holds a control character, code 0 (NUL
 printf '&material hardening = "table" curve_file = "c\033.txt" /\n' >"$work/esc.nml"
 expect 1 "group &material, variable curve_file: holds a control character, code 27 (escape)" \
     'an escape in a file name is refused' -- "$bin" "$work/esc.nml" -o "$work/esc"
+# the laws' text variables too (a choice with a control character was
+# taken for the default: 'transverse\001' drew along the rolling direction)
+printf '&material model = "combined" drawing_direction = "transverse\001" /\n' >"$work/dir.nml"
+expect 1 "group &material, variable drawing_direction: holds a control character, code 1" \
+    'a control character in drawing_direction is refused' -- "$bin" "$work/dir.nml" -o "$work/dir"
+printf '&tools bead = "rectangular" friction_law = "power\001" /\n' >"$work/fl.nml"
+expect 1 "group &tools, variable friction_law: holds a control character, code 1" \
+    'a control character in friction_law is refused' -- "$bin" "$work/fl.nml" -o "$work/fl"
+printf '&tools bead = "rectangular" friction_law = "table" friction_file = "f\033.txt" /\n' >"$work/ff.nml"
+expect 1 "group &tools, variable friction_file: holds a control character, code 27 (escape)" \
+    'an escape in friction_file is refused' -- "$bin" "$work/ff.nml" -o "$work/ff"
 printf '&control title = "two\r\nlines" /\n&loading pull_distance = 0.1 /\n' >"$work/lf.nml"
 expect 0 'TITLE="two  lines"' 'a quoted title continued on the next line reads with blanks' -- \
     "$bin" "$work/lf.nml" -o "$work/lf"
