@@ -118,15 +118,18 @@ contains
       character(len=:), allocatable :: msg, at
       character(len=64), allocatable :: tok(:, :)
       integer, allocatable :: line_no(:)
-      integer :: i
+      integer :: i, j
       call read_pairs(path, 'friction table', 'pressure in MPa, coefficient', p, mu, tok, line_no, msg)
       if (len(msg) == 0) then
          do i = 1, size(p)
+            ! (Fortran's .and. may evaluate both sides: the point before is
+            ! the point itself for the first)
+            j = max(i - 1, 1)
             at = "friction table '"//path//"' line "//itoa(line_no(i))//': '
             if (.not. p(i) >= 0.0_dp) then
                msg = at//'pressure must be >= 0 (found '//trim(tok(1, i))//')'
-            else if (i > 1 .and. .not. p(i) > p(i - 1)) then
-               msg = at//'pressure not increasing ('//trim(tok(1, i))//' after '//trim(tok(1, i - 1))//')'
+            else if (i > 1 .and. .not. p(i) > p(j)) then
+               msg = at//'pressure not increasing ('//trim(tok(1, i))//' after '//trim(tok(1, j))//')'
             else if (.not. (mu(i) >= 0.0_dp .and. mu(i) <= 10.0_dp)) then
                msg = at//'coefficient must be within 0 and 10 (found '//trim(tok(2, i))//')'
             end if

@@ -376,22 +376,25 @@ contains
       character(len=:), allocatable :: msg, at
       character(len=64), allocatable :: tok(:, :)
       integer, allocatable :: line_no(:)
-      integer :: i
+      integer :: i, j
 
       call read_pairs(path, 'curve file', 'plastic strain, true stress', ep, sigma, tok, line_no, msg)
       if (len(msg) == 0) then
          do i = 1, size(ep)
+            ! (Fortran's .and. may evaluate both sides: the point before is
+            ! the point itself for the first)
+            j = max(i - 1, 1)
             at = "curve file '" // path // "' line " // itoa(line_no(i)) // ': '
             if (i == 1 .and. abs(ep(1)) > 0.0_dp) then
                msg = at // 'first plastic strain must be 0 (found ' // trim(tok(1, 1)) // ')'
-            else if (i > 1 .and. .not. ep(i) > ep(i - 1)) then
+            else if (i > 1 .and. .not. ep(i) > ep(j)) then
                msg = at // 'plastic strain not increasing (' // trim(tok(1, i)) // ' after ' &
-                        // trim(tok(1, i - 1)) // ')'
+                        // trim(tok(1, j)) // ')'
             else if (.not. sigma(i) > 0.0_dp) then
                msg = at // 'stress must be positive (found ' // trim(tok(2, i)) // ')'
-            else if (i > 1 .and. .not. sigma(i) >= sigma(i - 1)) then
+            else if (i > 1 .and. .not. sigma(i) >= sigma(j)) then
                msg = at // 'stress decreasing (' // trim(tok(2, i)) // ' after ' &
-                        // trim(tok(2, i - 1)) // ')'
+                        // trim(tok(2, j)) // ')'
             end if
             if (len(msg) > 0) exit
          end do
