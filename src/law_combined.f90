@@ -84,6 +84,10 @@ module law_combined
       integer :: n_back = 0
       real(dp) :: c(max_back_stresses) = 0.0_dp
       real(dp) :: gamma(max_back_stresses) = 0.0_dp
+      !> isotropic elasticity on the normal components, set once with the
+      !> constants: Lame's lambda and mu, the stiffness and the compliance
+      real(dp) :: lam = 0.0_dp, mu = 0.0_dp
+      real(dp) :: d(3, 3) = 0.0_dp, cmp(3, 3) = 0.0_dp
    contains
       procedure :: point_update => combined_point_update
       procedure :: update => combined_update
@@ -104,10 +108,18 @@ contains
       real(dp), intent(in) :: props(:), r0, r90, c(:), gamma(:)
       logical, intent(in) :: rolling
       type(combined_law_type) :: law
+      integer :: i
       allocate (law%props, source=props)
       law%youngs = props(ip_youngs)
       law%poisson = props(ip_poisson)
       law%n_back = min(size(c), max_back_stresses)
+      law%mu = law%youngs/(2.0_dp*(1.0_dp + law%poisson))
+      law%lam = law%youngs*law%poisson/((1.0_dp + law%poisson)*(1.0_dp - 2.0_dp*law%poisson))
+      law%d = law%lam
+      do i = 1, 3
+         law%d(i, i) = law%lam + 2.0_dp*law%mu
+      end do
+      call compliance(law%youngs, law%poisson, law%cmp)
       law%c(1:law%n_back) = c(1:law%n_back)
       law%gamma(1:law%n_back) = gamma(1:law%n_back)
       law%p = hill_matrix(r0, r90, rolling)
@@ -250,7 +262,7 @@ contains
       real(dp), intent(out) :: ddsdde(3, 3), cont(3, 3)
       real(dp), intent(in) :: stran(3), dstran(3), zbar
       integer, intent(in) :: kspt
-      real(dp) :: d(3, 3), cmp(3, 3), lam, mu, e, nu, tr(3), alpha_n(3, max_back_stresses), &
+      real(dp) :: mu, e, nu, tr(3), alpha_n(3, max_back_stresses), &
                   xi(3), q, p_n, sy, hp, dp_inc, n(3), alpha(3, max_back_stresses), sig(3), &
                   w, dep(3)
       integer :: i
@@ -259,13 +271,8 @@ contains
       end associate
       e = law%youngs
       nu = law%poisson
-      mu = e/(2.0_dp*(1.0_dp + nu))
-      lam = e*nu/((1.0_dp + nu)*(1.0_dp - 2.0_dp*nu))
-      d = lam
-      do i = 1, 3
-         d(i, i) = lam + 2.0_dp*mu
-      end do
-      tr = stress + matmul(d, dstran)
+      mu = law%mu
+      tr = stress + matmul(law%d, dstran)
       p_n = statev(isv_p)
       do i = 1, law%n_back
          alpha_n(:, i) = statev(isv_alpha + 3*(i - 1):isv_alpha + 2 + 3*(i - 1))
@@ -282,22 +289,22 @@ contains
       end if
       if (.not. (sy > 0.0_dp .and. all(ieee_is_finite(tr)))) then
          pnewdt = min(pnewdt, 0.5_dp)
-         ddsdde = d
-         cont = d
+         ddsdde = law%d
+         cont = law%d
          return
       end if
       if (q <= (1.0_dp + tol_yield)*sy) then
          stress = tr
-         ddsdde = d
-         cont = d
+         ddsdde = law%d
+         cont = law%d
          sse = elastic_energy(stress, e, nu)
          return
       end if
       call return_map(law, tr, alpha_n, p_n, mu, dp_inc, n, q, sy, hp, ok)
       if (.not. ok) then
          pnewdt = min(pnewdt, 0.5_dp)
-         ddsdde = d
-         cont = d
+         ddsdde = law%d
+         cont = law%d
          return
       end if
       sig = tr - 2.0_dp*mu*dp_inc*n
@@ -314,8 +321,7 @@ contains
       stress = sig
       spd = spd + w
       sse = elastic_energy(stress, e, nu)
-      call compliance(e, nu, cmp)
-      call tangents(law, cmp, d, n, q, dp_inc, hp, alpha_n, alpha, ddsdde, cont)
+      call tangents(law, n, q, dp_inc, hp, alpha_n, alpha, ddsdde, cont)
    end subroutine combined_point_update
 
    !> COMBINED_UPDATE: material_law_type's update (arguments there): the
@@ -331,13 +337,12 @@ contains
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in), optional :: s22n(n), s22(n)
       real(dp), intent(out), optional :: dsig_ds22(n)
-      real(dp) :: lam, mu, l2m, e, nu, e_ps, p_n, p, x, tr(3), xi(3), q, sy, hp
+      real(dp) :: lam, l2m, e, nu, e_ps, p_n, p, x, tr(3), xi(3), q, sy, hp
       integer :: k, i
       e = law%youngs
       nu = law%poisson
-      mu = e/(2.0_dp*(1.0_dp + nu))
-      lam = e*nu/((1.0_dp + nu)*(1.0_dp - 2.0_dp*nu))
-      l2m = lam + 2.0_dp*mu
+      lam = law%lam
+      l2m = law%d(1, 1)
       e_ps = e/(1.0_dp - nu**2)
       do k = 1, n
          p_n = 0.0_dp
@@ -489,16 +494,15 @@ contains
    !> TANGENTS: the consistent and continuum tangents of a plastic
    !> increment (module header).
    !>  law      [in]  the law
-   !>  cmp, d   [in]  elastic compliance and stiffness (3, 3)
    !>  n, q     [in]  flow direction and Hill's equivalent of xi at the end
    !>  dp_inc   [in]  the plastic strain increment
    !>  hp       [in]  d sigma_y / dp at the end
    !>  alpha_n, alpha [in] the back stresses at the start and the end
    !>  ddsdde   [out] consistent tangent
    !>  cont     [out] continuum tangent
-   pure subroutine tangents(law, cmp, d, n, q, dp_inc, hp, alpha_n, alpha, ddsdde, cont)
+   pure subroutine tangents(law, n, q, dp_inc, hp, alpha_n, alpha, ddsdde, cont)
       class(combined_law_type), intent(in) :: law
-      real(dp), intent(in) :: cmp(3, 3), d(3, 3), n(3), q, dp_inc, hp, &
+      real(dp), intent(in) :: n(3), q, dp_inc, hp, &
                               alpha_n(3, max_back_stresses), alpha(3, max_back_stresses)
       real(dp), intent(out) :: ddsdde(3, 3), cont(3, 3)
       real(dp) :: nn(3, 3), m(3, 3), a(3, 3), ai(3, 3), g(3), r(3), b, a_i, u(3), v(3), den, &
@@ -519,15 +523,15 @@ contains
          g0 = g0 - law%gamma(i)*alpha(:, i) + (2.0_dp/3.0_dp)*law%c(i)*n
       end do
       m = inverse3(eye + b*nn)
-      a = cmp + dp_inc*matmul(nn, m)
+      a = law%cmp + dp_inc*matmul(nn, m)
       ai = inverse3(a)
       r = n - dp_inc*matmul(nn, matmul(m, g))
       u = matmul(ai, r)
       v = matmul(n, matmul(m, ai))
       den = hp + dot_product(n, matmul(m, g)) + dot_product(v, r)
       ddsdde = ai - outer(u, v)/den
-      dn = matmul(d, n)
-      cont = d - outer(dn, dn)/(hp + dot_product(n, g0) + dot_product(n, dn))
+      dn = matmul(law%d, n)
+      cont = law%d - outer(dn, dn)/(hp + dot_product(n, g0) + dot_product(n, dn))
    end subroutine tangents
 
    !> The stored energy of the back stresses, sum_i 3/(4 C_i) alpha_i . alpha_i.
