@@ -53,7 +53,6 @@ module law_combined
    use kinds, only: dp
    use normal_law, only: normal_law_type, set_normal_layout, drive_block_point
    use hardening, only: flow_stress, plastic_work, ip_youngs, ip_poisson
-   use material_j2, only: check_props
    use deck, only: deck_type, is_unset, max_kinematic
    use deck_checks, only: check_real, check_choice, fail, at
    use errors, only: error_list
@@ -135,16 +134,14 @@ contains
    !> kinematic_c(i) is given.
    !>  d        [in]     the deck
    !>  props    [in]     the isotropic part's constants set-up built from it
-   !>  deck_ok  [in]     .false. when the deck has errors (the constants are
-   !>                    then not checked again)
    !>  errs     [in,out] problems are appended, naming deck, group, variable
-   function combined_law_of_deck(d, props, deck_ok, errs) result(law)
+   !>                   (the isotropic constants are set-up's to check)
+   function combined_law_of_deck(d, props, errs) result(law)
       type(deck_type), intent(in) :: d
       real(dp), intent(in) :: props(:)
-      logical, intent(in) :: deck_ok
       type(error_list), intent(inout) :: errs
       type(combined_law_type) :: law
-      character(len=:), allocatable :: p, msg
+      character(len=:), allocatable :: p
       real(dp) :: r0, r90, c(max_kinematic), gamma(max_kinematic)
       integer :: n, i
       p = trim(d%deck_file)
@@ -182,10 +179,6 @@ contains
             at(p, 'material', 'kinematic_gamma('//achar(48 + i)//')'), &
             'given without kinematic_c('//achar(48 + i)//')')
       end do
-      if (deck_ok) then
-         msg = check_props(props, size(props))
-         if (len_trim(msg) > 0) call fail(errs, "deck '"//p//"', group &material", trim(msg))
-      end if
       if (errs%count > 0) then
          ! nothing is built from values that may be out of range
          r0 = 1.0_dp

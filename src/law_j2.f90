@@ -23,7 +23,7 @@ module law_j2
    use kinds, only: dp
    use material_law, only: material_law_type
    use material_j2, only: umat_block, umat_block_to, n_statev, ip_youngs, ip_poisson, isv_eqps, &
-                          isv_eps22, isv_sigma33, isv_tangent, isv_flow_stress, check_props
+                          isv_eps22, isv_sigma33, isv_tangent, isv_flow_stress
    use deck, only: deck_type, is_unset
    use deck_checks, only: fail, at
    use errors, only: error_list
@@ -59,31 +59,23 @@ contains
       law%name = 'j2'
    end function j2_law
 
-   !> J2_LAW_OF_DECK: the law of a deck with model = 'j2': its constants
-   !> checked (check_props), and the other laws' variables refused.
+   !> J2_LAW_OF_DECK: the law of a deck with model = 'j2', the other laws'
+   !> variables refused (the constants are checked by set-up, with
+   !> material_j2's check_props, for every built-in law).
    !>  d        [in]     the deck
    !>  props    [in]     the constants set-up built from it (material_j2's layout)
-   !>  deck_ok  [in]     .false. when the deck has errors (the constants are
-   !>                    then not checked again)
    !>  errs     [in,out] problems are appended, naming deck, group, variable
-   function j2_law_of_deck(d, props, deck_ok, errs) result(law)
+   function j2_law_of_deck(d, props, errs) result(law)
       type(deck_type), intent(in) :: d
       real(dp), intent(in) :: props(:)
-      logical, intent(in) :: deck_ok
       type(error_list), intent(inout) :: errs
       type(j2_law_type) :: law
-      character(len=:), allocatable :: msg
       if (.not. is_unset(d%r0) .or. .not. is_unset(d%r90)) &
          call fail(errs, at(trim(d%deck_file), 'material', trim(merge('r0 ', 'r90', .not. is_unset(d%r0)))), &
                    "needs model = 'combined' (Hill 1948 with r0 and r90); model = 'j2' takes r_value")
       if (any(.not. is_unset(d%kinematic_c)) .or. any(.not. is_unset(d%kinematic_gamma))) &
          call fail(errs, at(trim(d%deck_file), 'material', 'kinematic_c'), &
                    "needs model = 'combined' (back stresses); model = 'j2' hardens isotropically")
-      if (deck_ok) then
-         msg = check_props(props, size(props))
-         if (len_trim(msg) > 0) call fail(errs, "deck '"//trim(d%deck_file)//"', group &material", &
-                                          trim(msg))
-      end if
       law = j2_law(props)
    end function j2_law_of_deck
 

@@ -14,7 +14,7 @@ module setup
    use controls, only: controls_type
    use model, only: model_type, model_init
    use hardening, only: read_curve_file, law_swift, law_voce, law_table, ip_law, ip_table_m
-   use material_j2, only: ip_youngs, ip_poisson, ip_r_value
+   use material_j2, only: ip_youngs, ip_poisson, ip_r_value, check_props
    use material_law, only: material_law_type
    use law_j2, only: j2_law_of_deck
    use law_combined, only: combined_law_of_deck
@@ -130,18 +130,25 @@ contains
       class(material_law_type), allocatable, intent(out) :: mat
       type(error_list), intent(inout) :: errs
       real(dp), allocatable :: props(:)
-      logical :: ok
-      if (d%model /= 'umat') call material_constants(d, props, errs)
-      ! the constants are checked where the deck and the curve file are good
-      ok = deck_ok .and. errs%count == 0
+      character(len=:), allocatable :: msg
+      if (d%model /= 'umat') then
+         call material_constants(d, props, errs)
+         ! the built-in laws' elastic and isotropic constants, checked once
+         ! where the deck and the curve file are good
+         if (deck_ok .and. errs%count == 0) then
+            msg = check_props(props, size(props))
+            if (len_trim(msg) > 0) call add_error(errs, "deck '"//trim(d%deck_file)// &
+                                                  "', group &material: "//trim(msg))
+         end if
+      end if
       select case (trim(d%model))
       case ('combined')
-         allocate (mat, source=combined_law_of_deck(d, props, ok, errs))
+         allocate (mat, source=combined_law_of_deck(d, props, errs))
       case ('umat')
          allocate (mat, source=umat_law_of_deck(d, errs))
       case default
          ! 'j2', and an unknown name (the deck's error already)
-         allocate (mat, source=j2_law_of_deck(d, props, ok, errs))
+         allocate (mat, source=j2_law_of_deck(d, props, errs))
       end select
    end subroutine material_of_deck
 
