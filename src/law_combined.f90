@@ -52,23 +52,28 @@ module law_combined
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
    use normal_law, only: normal_law_type, set_normal_layout, drive_block_point
-   use hardening, only: flow_stress, plastic_work, ip_youngs, ip_poisson
+   use hardening, only: flow_stress, flow_stress_block, plastic_work, ip_youngs, ip_poisson
    use deck, only: deck_type, is_unset, max_kinematic
    use deck_checks, only: check_real, check_choice, fail, at
    use errors, only: error_list
    implicit none
    private
-   public :: combined_law_type, combined_law, combined_law_of_deck, hill_matrix, max_back_stresses
+   public :: combined_law_type, combined_law, combined_law_of_deck, hill_matrix, max_back_stresses, &
+             isv_p, isv_alpha
 
    !> the largest number of back stresses
    integer, parameter :: max_back_stresses = 3
    !> places of the own state variables (module header)
-   integer, parameter :: isv_p = 1, isv_flow = 2, isv_alpha = 3
+   integer, parameter :: isv_p = 1, isv_flow = 2, isv_slope = 3, isv_alpha = 4
    !> a trial state with sbar_trial <= (1 + tol_yield) sigma_y is elastic
    real(dp), parameter :: tol_yield = 1.0e-12_dp
    !> relative tolerance of the yield residual of the return mapping
    real(dp), parameter :: tol_return = 1.0e-12_dp
    integer, parameter :: max_return_iter = 60
+   !> below this relative residual the last Newton step of the block
+   !> return is taken without a further hardening-law call (return_mapping's
+   !> tol_taylor: quadratic convergence puts the next residual near 1e-14)
+   real(dp), parameter :: tol_taylor = 1.0e-7_dp
 
    !> Combined hardening with its constants.
    type, extends(normal_law_type) :: combined_law_type
@@ -123,7 +128,7 @@ contains
       law%gamma(1:law%n_back) = gamma(1:law%n_back)
       law%p = hill_matrix(r0, r90, rolling)
       call eigen_deviatoric(law%p, law%eig_val, law%eig_vec)
-      call set_normal_layout(law, 2 + 3*law%n_back, isv_p)
+      call set_normal_layout(law, 3 + 3*law%n_back, isv_p)
       law%name = 'combined'
    end function combined_law
 
@@ -279,6 +284,7 @@ contains
       if (.not. sy > 0.0_dp) then
          call flow_stress(p_n, law%props, size(law%props), sy, hp)
          statev(isv_flow) = sy
+         statev(isv_slope) = hp
       end if
       if (.not. (sy > 0.0_dp .and. all(ieee_is_finite(tr)))) then
          pnewdt = min(pnewdt, 0.5_dp)
@@ -311,6 +317,7 @@ contains
       end do
       statev(isv_p) = p_n + dp_inc
       statev(isv_flow) = sy
+      statev(isv_slope) = hp
       stress = sig
       spd = spd + w
       sse = elastic_energy(stress, e, nu)
@@ -318,8 +325,9 @@ contains
    end subroutine combined_point_update
 
    !> COMBINED_UPDATE: material_law_type's update (arguments there): the
-   !> elastic predictor of the module header for the block, normal_law's
-   !> drive_thickness for the points that yield.
+   !> elastic predictor of the module header for the block, then the points
+   !> that yield gathered and returned together by mixed_return_block
+   !> (docs/theory.md §13.7).
    subroutine combined_update(law, n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, &
                               pnewdt, s22n, s22, dsig_ds22)
       class(combined_law_type), intent(in) :: law
@@ -330,54 +338,485 @@ contains
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in), optional :: s22n(n), s22(n)
       real(dp), intent(out), optional :: dsig_ds22(n)
-      real(dp) :: lam, l2m, e, nu, e_ps, p_n, p, x, tr(3), xi(3), q, sy, hp
-      integer :: k, i
+      real(dp) :: lam, l2m, e, nu, e_ps, sy, hp, a, w, an(3), al(3), dep(3), n_bad
+      ! every point's elastic trial
+      real(dp) :: pnv(n), pv(n), xe(n), te(n, 3), xie(n, 3), q2(n)
+      logical :: elastic(n)
+      ! the yielding points, gathered (mixed_return_block's arguments)
+      real(dp) :: tr0(n, 3), pp(n), ep(n), syn(n), hpn(n), aa(n, 2, max_back_stresses), &
+                  dpv(n), xv(n), nv(n, 3), syv(n), hpv(n), tau(n, 2), dd(n, 2, 2), cpl(n), tng(n)
+      integer :: k, i, j, np, idx(n)
+      logical :: ok
+      ! the law is rate-independent and the same at every point
+      associate (unused => stran11, unused2 => zbar)
+      end associate
       e = law%youngs
       nu = law%poisson
       lam = law%lam
       l2m = law%d(1, 1)
       e_ps = e/(1.0_dp - nu**2)
+      ! the elastic trial of every point with the width strain held and
+      ! tau22 = p (one vector loop; Hill's sbar^2 = xi . P xi with xi the
+      ! trial stress less the back stresses)
       do k = 1, n
-         p_n = 0.0_dp
-         p = 0.0_dp
-         if (present(s22)) then
-            p_n = s22n(k)
-            p = s22(k)
-         end if
-         ! the elastic trial with the width strain held and tau22 = p
-         x = (p - p_n - lam*(dstran(k, 1) + dstran(k, 2)))/l2m
-         tr(1) = stress(k, 1) + l2m*dstran(k, 1) + lam*(x + dstran(k, 2))
-         tr(2) = p
-         tr(3) = stress(k, 2) + l2m*dstran(k, 2) + lam*(x + dstran(k, 1))
-         xi = tr
-         do i = 1, law%n_back
-            xi = xi - statev(k, isv_alpha + 3*(i - 1):isv_alpha + 2 + 3*(i - 1))
+         pnv(k) = 0.0_dp
+         pv(k) = 0.0_dp
+      end do
+      if (present(s22)) then
+         do k = 1, n
+            pnv(k) = s22n(k)
+            pv(k) = s22(k)
          end do
-         q = sqrt(max(dot_product(xi, matmul(law%p, xi)), 0.0_dp))
-         sy = statev(k, isv_flow)
-         if (.not. sy > 0.0_dp) then
+      end if
+      do k = 1, n
+         xe(k) = (pv(k) - pnv(k) - lam*(dstran(k, 1) + dstran(k, 2)))/l2m
+         te(k, 1) = stress(k, 1) + l2m*dstran(k, 1) + lam*(xe(k) + dstran(k, 2))
+         te(k, 2) = pv(k)
+         te(k, 3) = stress(k, 2) + l2m*dstran(k, 2) + lam*(xe(k) + dstran(k, 1))
+         xie(k, :) = te(k, :)
+      end do
+      do i = 1, law%n_back
+         do k = 1, n
+            xie(k, 1) = xie(k, 1) - statev(k, isv_alpha + 3*(i - 1))
+            xie(k, 2) = xie(k, 2) - statev(k, isv_alpha + 1 + 3*(i - 1))
+            xie(k, 3) = xie(k, 3) - statev(k, isv_alpha + 2 + 3*(i - 1))
+         end do
+      end do
+      ! the flow stress cache, filled where not known (a virgin or a
+      ! remeshed point)
+      do k = 1, n
+         if (.not. statev(k, isv_flow) > 0.0_dp) then
             call flow_stress(statev(k, isv_p), law%props, size(law%props), sy, hp)
             statev(k, isv_flow) = sy
+            statev(k, isv_slope) = hp
          end if
-         if (sy > 0.0_dp .and. q <= (1.0_dp + tol_yield)*sy .and. all(ieee_is_finite(tr))) then
-            stress(k, 1) = tr(1)
-            stress(k, 2) = tr(3)
-            statev(k, law%isv_eps22) = statev(k, law%isv_eps22) + x
+      end do
+      n_bad = 0.0_dp
+      do k = 1, n
+         q2(k) = law%p(1, 1)*xie(k, 1)**2 + law%p(2, 2)*xie(k, 2)**2 + law%p(3, 3)*xie(k, 3)**2 &
+                 + 2.0_dp*(law%p(1, 2)*xie(k, 1)*xie(k, 2) + law%p(1, 3)*xie(k, 1)*xie(k, 3) &
+                           + law%p(2, 3)*xie(k, 2)*xie(k, 3))
+         sy = statev(k, isv_flow)
+         n_bad = n_bad + merge(0.0_dp, 1.0_dp, sy > 0.0_dp .and. abs(te(k, 1)) <= huge(1.0_dp) &
+                               .and. abs(te(k, 3)) <= huge(1.0_dp) .and. abs(pv(k)) <= huge(1.0_dp))
+         elastic(k) = q2(k) <= ((1.0_dp + tol_yield)*sy)**2
+      end do
+      if (n_bad > 0.5_dp) then
+         pnewdt = min(pnewdt, 0.5_dp)
+         return
+      end if
+      ! the elastic points' end state (the yielding points' is set below)
+      do k = 1, n
+         if (elastic(k)) then
+            stress(k, 1) = te(k, 1)
+            stress(k, 2) = te(k, 3)
+            statev(k, law%isv_eps22) = statev(k, law%isv_eps22) + xe(k)
             ! the tangents with tau22 held: plane-stress elasticity
             statev(k, law%isv_tangent) = e_ps
-            sse(k) = elastic_energy(tr, e, nu)
+            sse(k) = elastic_energy(te(k, :), e, nu)
             ddsdde(k, 1, 1) = e_ps
             ddsdde(k, 1, 2) = nu*e_ps
             ddsdde(k, 2, 1) = nu*e_ps
             ddsdde(k, 2, 2) = e_ps
-            if (present(dsig_ds22)) dsig_ds22(k) = lam/l2m
-            cycle
          end if
-         call drive_block_point(law, k, n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, &
-                                p_n, p, pnewdt, dsig_ds22)
-         if (pnewdt < 1.0_dp) return
+      end do
+      if (present(dsig_ds22)) then
+         do k = 1, n
+            if (elastic(k)) dsig_ds22(k) = lam/l2m
+         end do
+      end if
+      ! the yielding points, gathered with their trial at no thickness
+      ! strain increment
+      np = 0
+      do k = 1, n
+         if (elastic(k)) cycle
+         np = np + 1
+         idx(np) = k
+         tr0(np, 1) = stress(k, 1) + l2m*dstran(k, 1) + lam*dstran(k, 2)
+         tr0(np, 2) = pnv(k) + lam*(dstran(k, 1) + dstran(k, 2))
+         tr0(np, 3) = stress(k, 2) + lam*dstran(k, 1) + l2m*dstran(k, 2)
+         pp(np) = pv(k)
+         ep(np) = statev(k, isv_p)
+         syn(np) = statev(k, isv_flow)
+         hpn(np) = statev(k, isv_slope)
+         do i = 1, law%n_back
+            an = statev(k, isv_alpha + 3*(i - 1):isv_alpha + 2 + 3*(i - 1))
+            aa(np, 1, i) = dot_product(law%eig_vec(:, 1), an)
+            aa(np, 2, i) = dot_product(law%eig_vec(:, 2), an)
+         end do
+      end do
+      if (np == 0) return
+      call mixed_return_block(law, np, tr0(1:np, :), pp(1:np), ep(1:np), syn(1:np), hpn(1:np), &
+                              aa(1:np, :, :), dpv(1:np), xv(1:np), nv(1:np, :), syv(1:np), &
+                              hpv(1:np), tau(1:np, :), dd(1:np, :, :), cpl(1:np), tng(1:np), ok)
+      if (.not. ok) then
+         pnewdt = min(pnewdt, 0.5_dp)
+         return
+      end if
+      do j = 1, np
+         k = idx(j)
+         dep = dpv(j)*nv(j, :)
+         w = plastic_work(ep(j) + dpv(j), syv(j), law%props, size(law%props)) &
+             - plastic_work(ep(j), syn(j), law%props, size(law%props))
+         do i = 1, law%n_back
+            an = statev(k, isv_alpha + 3*(i - 1):isv_alpha + 2 + 3*(i - 1))
+            a = 1.0_dp/(1.0_dp + law%gamma(i)*dpv(j))
+            al = a*(an + (2.0_dp/3.0_dp)*law%c(i)*dep)
+            w = w + 0.5_dp*dot_product(an + al, dep)
+            statev(k, isv_alpha + 3*(i - 1):isv_alpha + 2 + 3*(i - 1)) = al
+         end do
+         stress(k, 1) = tau(j, 1)
+         stress(k, 2) = tau(j, 2)
+         statev(k, isv_p) = ep(j) + dpv(j)
+         statev(k, isv_flow) = syv(j)
+         statev(k, isv_slope) = hpv(j)
+         statev(k, law%isv_eps22) = statev(k, law%isv_eps22) + xv(j)
+         statev(k, law%isv_tangent) = tng(j)
+         spd(k) = spd(k) + w
+         sse(k) = elastic_energy([tau(j, 1), pp(j), tau(j, 2)], e, nu)
+         ddsdde(k, :, :) = dd(j, :, :)
+         if (present(dsig_ds22)) dsig_ds22(k) = cpl(j)
       end do
    end subroutine combined_update
+
+   !> MIXED_RETURN_BLOCK: the backward-Euler update of np yielding points
+   !> with the axial and width strain increments given and tau22
+   !> prescribed, solved directly (docs/theory.md §13.7) rather than by
+   !> driving the thickness strain around the three-component return
+   !> mapping.
+   !>
+   !> For a given dp the thickness strain increment x follows in closed
+   !> form: in the eigenvectors v_k of P (module header) the return is
+   !> diagonal, xi_k = g_k (c_k + x d_k), g_k = 1/(1 + theta lambda_k),
+   !> c_k = v_k . (tau^T(0) - sum a_i alpha_i,n), d_k = v_k . D e_2 =
+   !> 2 mu v_k,2, with tau^T(0) the elastic trial at x = 0; and tau22 =
+   !> tau^T_22(0) + (lambda + 2 mu) x - 2 mu dp n_2, n = P xi / sigma_y =
+   !> sum lambda_k xi_k v_k / sigma_y, is affine in x.  The one unknown dp
+   !> then solves phi = sqrt(sum lambda_k xi_k^2) - sigma_y = 0, by Newton's
+   !> method on (1 + theta lambda_1) phi in a bracket (return_map's), all
+   !> points at once: each pass one vector loop and one vector call of the
+   !> hardening law, and the last Newton step from |phi| <= tol_taylor
+   !> sigma_y taken with sigma_y carried by Taylor's formula (law_j2's
+   !> return_map_block).
+   !>
+   !> The consistent tangent linearises the two equations in (dp, x),
+   !>   tau^T_22(0) + (lambda + 2 mu) x - beta sum lambda_k e_k xi_k = p,
+   !>   sum lambda_k xi_k^2 = sigma_y^2,    beta = 2 mu dp / sigma_y,
+   !> e_k = v_k,2: a 2 x 2 system for d dp, d x per input (eps11, eps33,
+   !> p), then d tau = d tau^T(0) + D e_2 d x - 2 mu (d dp n + dp d n).
+   !>  law      [in]  the law
+   !>  np       [in]  number of points
+   !>  tr0      [in]  (np, 3) the elastic trial (tau11, tau22, tau33) at x = 0
+   !>  pp       [in]  (np) the prescribed tau22 at the end
+   !>  ep       [in]  (np) the equivalent plastic strain at the start
+   !>  syn, hpn [in]  (np) sigma_y and its slope there
+   !>  aa       [in]  (np, 2, max_back_stresses) v_k . alpha_i at the start
+   !>  dpv      [out] (np) the plastic strain increments
+   !>  xv       [out] (np) the thickness log strain increments
+   !>  nv       [out] (np, 3) the flow directions at the end
+   !>  syv, hpv [out] (np) sigma_y and its slope at the end
+   !>  tau      [out] (np, 2) tau11, tau33 at the end
+   !>  dd       [out] (np, 2, 2) d(tau11, tau33)/d(eps11, eps33), tau22 held
+   !>  cpl      [out] (np) d tau11 / d tau22 at fixed eps11, eps33
+   !>  tng      [out] (np) the condensed continuum tangent d tau11 / d eps11
+   !>  ok       [out] .false.: a point found no root (no convergence, a
+   !>                 non-positive flow stress, a non-finite value)
+   pure subroutine mixed_return_block(law, np, tr0, pp, ep, syn, hpn, aa, dpv, xv, nv, syv, hpv, &
+                                      tau, dd, cpl, tng, ok)
+      class(combined_law_type), intent(in) :: law
+      integer, intent(in) :: np
+      real(dp), intent(in) :: tr0(np, 3), pp(np), ep(np), syn(np), hpn(np), &
+                              aa(np, 2, max_back_stresses)
+      real(dp), intent(out) :: dpv(np), xv(np), nv(np, 3), syv(np), hpv(np), tau(np, 2), &
+                               dd(np, 2, 2), cpl(np), tng(np)
+      logical, intent(out) :: ok
+      real(dp) :: t(np, 2), lo(np), hi(np), step(np), epv(np), g(np, 2), dc0(np, 2), xi(np, 2), &
+                  theta(np), dtheta(np), beta(np), dbeta(np), phi(np), dphi(np)
+      real(dp) :: n_far, n_out
+      integer :: iter, j, k
+      do k = 1, 2
+         do j = 1, np
+            t(j, k) = law%eig_vec(1, k)*tr0(j, 1) + law%eig_vec(2, k)*tr0(j, 2) &
+                      + law%eig_vec(3, k)*tr0(j, 3)
+         end do
+      end do
+      do j = 1, np
+         dpv(j) = 0.0_dp
+         lo(j) = 0.0_dp
+         hi(j) = huge(1.0_dp)
+         syv(j) = syn(j)
+         hpv(j) = hpn(j)
+      end do
+      ok = .false.
+      do iter = 1, max_return_iter
+         call mixed_eval(law, np, t, tr0(:, 2), pp, aa, dpv, syv, hpv, xv, xi, g, dc0, theta, &
+                         dtheta, beta, dbeta, phi, dphi)
+         if (.not. all(ieee_is_finite(phi) .and. ieee_is_finite(dphi))) return
+         call mixed_step(law, np, phi, dphi, syv, theta, dtheta, dpv, lo, hi, step, n_far, n_out)
+         if (n_far < 0.5_dp) then
+            ok = .true.
+            exit
+         end if
+         if (n_out < 0.5_dp) then
+            ! the last Newton step with sigma_y carried by Taylor's formula
+            ! (return_mapping's tol_taylor: the next residual near 1e-14)
+            do j = 1, np
+               syv(j) = syv(j) + hpv(j)*(step(j) - dpv(j))
+               dpv(j) = step(j)
+            end do
+            call mixed_eval(law, np, t, tr0(:, 2), pp, aa, dpv, syv, hpv, xv, xi, g, dc0, theta, &
+                            dtheta, beta, dbeta, phi, dphi)
+            ok = all(ieee_is_finite(phi))
+            exit
+         end if
+         do j = 1, np
+            dpv(j) = step(j)
+            epv(j) = ep(j) + step(j)
+         end do
+         call flow_stress_block(np, epv, law%props, size(law%props), syv, hpv)
+         if (.not. all(syv > 0.0_dp .and. syv <= huge(1.0_dp))) return
+      end do
+      if (.not. ok) return
+      ok = all(dpv > 0.0_dp)
+      if (.not. ok) return
+      call mixed_results(law, np, tr0, aa, dpv, xv, xi, g, dc0, syv, hpv, dtheta, beta, dbeta, &
+                         nv, tau, dd, cpl, tng)
+      ok = all(ieee_is_finite(tau)) .and. all(ieee_is_finite(dd)) .and. all(ieee_is_finite(tng))
+   end subroutine mixed_return_block
+
+   !> MIXED_EVAL: the state of mixed_return_block's points at given dp
+   !> (the closed forms of its header) and phi with its derivative.
+   !>  law        [in]  the law
+   !>  np         [in]  number of points
+   !>  t          [in]  (np, 2) v_k . tau^T(0)
+   !>  tr2, pp    [in]  (np) tau^T_22(0) and the prescribed tau22
+   !>  aa         [in]  (np, 2, max_back_stresses) v_k . alpha_i,n
+   !>  dpv, syv, hpv [in] (np) dp, sigma_y(ep + dp) and its slope
+   !>  xv         [out] (np) the thickness strain increment
+   !>  xi         [out] (np, 2) xi_k
+   !>  g, dc0     [out] (np, 2) g_k and d c_k / d dp
+   !>  theta, dtheta, beta, dbeta [out] (np) and their derivatives in dp
+   !>  phi, dphi  [out] (np) the yield residual and its derivative in dp
+   pure subroutine mixed_eval(law, np, t, tr2, pp, aa, dpv, syv, hpv, xv, xi, g, dc0, theta, &
+                              dtheta, beta, dbeta, phi, dphi)
+      class(combined_law_type), intent(in) :: law
+      integer, intent(in) :: np
+      real(dp), intent(in) :: t(np, 2), tr2(np), pp(np), aa(np, 2, max_back_stresses), dpv(np), &
+                              syv(np), hpv(np)
+      real(dp), intent(out) :: xv(np), xi(np, 2), g(np, 2), dc0(np, 2), theta(np), dtheta(np), &
+                               beta(np), dbeta(np), phi(np), dphi(np)
+      real(dp) :: b(np), bd(np), c0(np, 2), a, ci, gi, mu, l2m, l1, l2, e1, e2, d1, d2, g1, g2, &
+                  dg1, dg2, s1, s2, ds1, ds2, num, dnum, dnm, ddnm, dx, r1, r2, dxi1, dxi2, q
+      integer :: i, j
+      mu = law%mu
+      l2m = law%d(1, 1)
+      l1 = law%eig_val(1)
+      l2 = law%eig_val(2)
+      e1 = law%eig_vec(2, 1)
+      e2 = law%eig_vec(2, 2)
+      d1 = 2.0_dp*mu*e1
+      d2 = 2.0_dp*mu*e2
+      do j = 1, np
+         b(j) = 0.0_dp
+         bd(j) = 0.0_dp
+         c0(j, 1) = t(j, 1)
+         c0(j, 2) = t(j, 2)
+         dc0(j, 1) = 0.0_dp
+         dc0(j, 2) = 0.0_dp
+      end do
+      do i = 1, law%n_back
+         ci = (2.0_dp/3.0_dp)*law%c(i)
+         gi = law%gamma(i)
+         do j = 1, np
+            a = 1.0_dp/(1.0_dp + gi*dpv(j))
+            b(j) = b(j) + ci*dpv(j)*a
+            bd(j) = bd(j) + ci*a*a
+            c0(j, 1) = c0(j, 1) - a*aa(j, 1, i)
+            c0(j, 2) = c0(j, 2) - a*aa(j, 2, i)
+            dc0(j, 1) = dc0(j, 1) + gi*a*a*aa(j, 1, i)
+            dc0(j, 2) = dc0(j, 2) + gi*a*a*aa(j, 2, i)
+         end do
+      end do
+      do j = 1, np
+         theta(j) = (2.0_dp*mu*dpv(j) + b(j))/syv(j)
+         dtheta(j) = (2.0_dp*mu + bd(j) - theta(j)*hpv(j))/syv(j)
+         beta(j) = 2.0_dp*mu*dpv(j)/syv(j)
+         dbeta(j) = (2.0_dp*mu - beta(j)*hpv(j))/syv(j)
+         g1 = 1.0_dp/(1.0_dp + theta(j)*l1)
+         g2 = 1.0_dp/(1.0_dp + theta(j)*l2)
+         dg1 = -g1*g1*l1*dtheta(j)
+         dg2 = -g2*g2*l2*dtheta(j)
+         g(j, 1) = g1
+         g(j, 2) = g2
+         s1 = l1*e1*g1*c0(j, 1) + l2*e2*g2*c0(j, 2)
+         s2 = l1*e1*g1*d1 + l2*e2*g2*d2
+         ds1 = l1*e1*(dg1*c0(j, 1) + g1*dc0(j, 1)) + l2*e2*(dg2*c0(j, 2) + g2*dc0(j, 2))
+         ds2 = l1*e1*dg1*d1 + l2*e2*dg2*d2
+         ! tau22 = p: x in closed form at this dp
+         num = pp(j) - tr2(j) + beta(j)*s1
+         dnum = dbeta(j)*s1 + beta(j)*ds1
+         dnm = l2m - beta(j)*s2
+         ddnm = -(dbeta(j)*s2 + beta(j)*ds2)
+         xv(j) = num/dnm
+         dx = (dnum - xv(j)*ddnm)/dnm
+         r1 = c0(j, 1) + xv(j)*d1
+         r2 = c0(j, 2) + xv(j)*d2
+         xi(j, 1) = g1*r1
+         xi(j, 2) = g2*r2
+         dxi1 = dg1*r1 + g1*(dc0(j, 1) + dx*d1)
+         dxi2 = dg2*r2 + g2*(dc0(j, 2) + dx*d2)
+         q = sqrt(max(l1*xi(j, 1)**2 + l2*xi(j, 2)**2, tiny(1.0_dp)))
+         phi(j) = q - syv(j)
+         dphi(j) = (l1*xi(j, 1)*dxi1 + l2*xi(j, 2)*dxi2)/q - hpv(j)
+      end do
+   end subroutine mixed_eval
+
+   !> MIXED_STEP: one safeguarded Newton step of mixed_return_block at
+   !> every point (return_mapping's newton_step_block): the bracket
+   !> [lo, hi] narrowed by the sign of phi, the Newton step on
+   !> (1 + theta lambda_1) phi, bisection (or doubling, before a bracket is
+   !> known) where it leaves the bracket; a point with |phi| <= tol_return
+   !> sigma_y keeps its dp.
+   !>  law          [in]  the law
+   !>  np           [in]  number of points
+   !>  phi, dphi    [in]  (np) the residual and its derivative
+   !>  syv          [in]  (np) sigma_y
+   !>  theta, dtheta [in] (np) theta and its derivative
+   !>  dpv          [in]  (np) dp
+   !>  lo, hi       [in,out] (np) the bracket
+   !>  step         [out] (np) the next dp
+   !>  n_far        [out] points not yet at |phi| <= tol_return sigma_y
+   !>  n_out        [out] of these, points too far for the Taylor finish
+   pure subroutine mixed_step(law, np, phi, dphi, syv, theta, dtheta, dpv, lo, hi, step, n_far, n_out)
+      class(combined_law_type), intent(in) :: law
+      integer, intent(in) :: np
+      real(dp), intent(in) :: phi(np), dphi(np), syv(np), theta(np), dtheta(np), dpv(np)
+      real(dp), intent(inout) :: lo(np), hi(np)
+      real(dp), intent(out) :: step(np), n_far, n_out
+      real(dp) :: far, near, f, fd, s, l, h, den, l1
+      logical :: inside
+      integer :: j
+      l1 = law%eig_val(1)
+      n_far = 0.0_dp
+      n_out = 0.0_dp
+      do j = 1, np
+         far = merge(0.0_dp, 1.0_dp, abs(phi(j)) <= tol_return*syv(j))
+         l = merge(dpv(j), lo(j), phi(j) > 0.0_dp)
+         h = merge(hi(j), dpv(j), phi(j) > 0.0_dp)
+         lo(j) = l
+         hi(j) = h
+         den = 1.0_dp + theta(j)*l1
+         f = phi(j)*den
+         fd = dphi(j)*den + phi(j)*l1*dtheta(j)
+         s = dpv(j) - f/merge(fd, -1.0_dp, fd < 0.0_dp)
+         inside = fd < 0.0_dp .and. s > l .and. s < h
+         s = merge(s, merge(0.5_dp*(l + h), max(2.0_dp*l, 1.0e-8_dp), h < huge(1.0_dp)), inside)
+         step(j) = dpv(j)*(1.0_dp - far) + s*far
+         near = merge(1.0_dp, 0.0_dp, inside)*merge(1.0_dp, 0.0_dp, abs(phi(j)) <= tol_taylor*syv(j))
+         n_far = n_far + far
+         n_out = n_out + far*(1.0_dp - near)
+      end do
+   end subroutine mixed_step
+
+   !> MIXED_RESULTS: mixed_return_block's end state and tangents at its
+   !> root (the linearisation in its header) and the continuum tangent.
+   !>  law   [in]  the law
+   !>  np    [in]  number of points
+   !>  tr0, aa, dpv, xv, xi, g, dc0, syv, hpv, dtheta, beta, dbeta [in]
+   !>              as mixed_return_block and mixed_eval at the root
+   !>  nv, tau, dd, cpl, tng [out] as mixed_return_block
+   pure subroutine mixed_results(law, np, tr0, aa, dpv, xv, xi, g, dc0, syv, hpv, dtheta, beta, &
+                                 dbeta, nv, tau, dd, cpl, tng)
+      class(combined_law_type), intent(in) :: law
+      integer, intent(in) :: np
+      real(dp), intent(in) :: tr0(np, 3), aa(np, 2, max_back_stresses), dpv(np), xv(np), &
+                              xi(np, 2), g(np, 2), dc0(np, 2), syv(np), hpv(np), dtheta(np), &
+                              beta(np), dbeta(np)
+      real(dp), intent(out) :: nv(np, 3), tau(np, 2), dd(np, 2, 2), cpl(np), tng(np)
+      real(dp) :: mu, lam, l2m, l1, l2, e1, e2, d1, d2, v(3, 2), dtk(2, 3), dtr(3, 3), dpin(3), &
+                  ng0(np), nn, a1, a2, b1, b2, s, a11, a12, a21, a22, det, r1, r2, ddp, ddx, &
+                  dxi1, dxi2, dn1, dn3, w1, w2, an, a, ci, gi, den, c11, c12, c22, dt1(3), dt3(3)
+      integer :: i, j, c
+      mu = law%mu
+      lam = law%lam
+      l2m = law%d(1, 1)
+      l1 = law%eig_val(1)
+      l2 = law%eig_val(2)
+      v = law%eig_vec(:, 1:2)
+      e1 = v(2, 1)
+      e2 = v(2, 2)
+      d1 = 2.0_dp*mu*e1
+      d2 = 2.0_dp*mu*e2
+      ! the inputs eps11, eps33, p: d(v_k . tau^T(0)), d tau^T(0), d p
+      dtk(:, 1) = 2.0_dp*mu*v(1, :)
+      dtk(:, 2) = 2.0_dp*mu*v(3, :)
+      dtk(:, 3) = 0.0_dp
+      dtr(:, 1) = [l2m, lam, lam]
+      dtr(:, 2) = [lam, lam, l2m]
+      dtr(:, 3) = 0.0_dp
+      dpin = [0.0_dp, 0.0_dp, 1.0_dp]
+      ! n . g0 of the continuum tangent: sum_i (2/3 C_i n.n - gamma_i alpha_i . n)
+      do j = 1, np
+         ng0(j) = 0.0_dp
+      end do
+      do i = 1, law%n_back
+         ci = (2.0_dp/3.0_dp)*law%c(i)
+         gi = law%gamma(i)
+         do j = 1, np
+            w1 = l1*xi(j, 1)/syv(j)
+            w2 = l2*xi(j, 2)/syv(j)
+            nn = w1*w1 + w2*w2
+            an = aa(j, 1, i)*w1 + aa(j, 2, i)*w2
+            a = 1.0_dp/(1.0_dp + gi*dpv(j))
+            ng0(j) = ng0(j) + ci*nn - gi*a*(an + ci*dpv(j)*nn)
+         end do
+      end do
+      do j = 1, np
+         w1 = l1*xi(j, 1)/syv(j)
+         w2 = l2*xi(j, 2)/syv(j)
+         nv(j, 1) = v(1, 1)*w1 + v(1, 2)*w2
+         nv(j, 2) = v(2, 1)*w1 + v(2, 2)*w2
+         nv(j, 3) = v(3, 1)*w1 + v(3, 2)*w2
+         tau(j, 1) = tr0(j, 1) + lam*xv(j) - 2.0_dp*mu*dpv(j)*nv(j, 1)
+         tau(j, 2) = tr0(j, 3) + lam*xv(j) - 2.0_dp*mu*dpv(j)*nv(j, 3)
+         ! the 2 x 2 system in (d dp, d x): d xi_k = A_k d dp + B_k d x + g_k d t_k
+         a1 = -g(j, 1)*l1*dtheta(j)*xi(j, 1) + g(j, 1)*dc0(j, 1)
+         a2 = -g(j, 2)*l2*dtheta(j)*xi(j, 2) + g(j, 2)*dc0(j, 2)
+         b1 = g(j, 1)*d1
+         b2 = g(j, 2)*d2
+         s = l1*e1*xi(j, 1) + l2*e2*xi(j, 2)
+         a11 = -(dbeta(j)*s + beta(j)*(l1*e1*a1 + l2*e2*a2))
+         a12 = l2m - beta(j)*(l1*e1*b1 + l2*e2*b2)
+         a21 = l1*xi(j, 1)*a1 + l2*xi(j, 2)*a2 - syv(j)*hpv(j)
+         a22 = l1*xi(j, 1)*b1 + l2*xi(j, 2)*b2
+         det = a11*a22 - a12*a21
+         do c = 1, 3
+            r1 = dpin(c) - dtr(2, c) + beta(j)*(l1*e1*g(j, 1)*dtk(1, c) + l2*e2*g(j, 2)*dtk(2, c))
+            r2 = -(l1*xi(j, 1)*g(j, 1)*dtk(1, c) + l2*xi(j, 2)*g(j, 2)*dtk(2, c))
+            ddp = (r1*a22 - a12*r2)/det
+            ddx = (a11*r2 - a21*r1)/det
+            dxi1 = a1*ddp + b1*ddx + g(j, 1)*dtk(1, c)
+            dxi2 = a2*ddp + b2*ddx + g(j, 2)*dtk(2, c)
+            dn1 = (l1*dxi1*v(1, 1) + l2*dxi2*v(1, 2) - nv(j, 1)*hpv(j)*ddp)/syv(j)
+            dn3 = (l1*dxi1*v(3, 1) + l2*dxi2*v(3, 2) - nv(j, 3)*hpv(j)*ddp)/syv(j)
+            dt1(c) = dtr(1, c) + lam*ddx - 2.0_dp*mu*(ddp*nv(j, 1) + dpv(j)*dn1)
+            dt3(c) = dtr(3, c) + lam*ddx - 2.0_dp*mu*(ddp*nv(j, 3) + dpv(j)*dn3)
+         end do
+         dd(j, 1, 1) = dt1(1)
+         dd(j, 2, 1) = dt3(1)
+         dd(j, 1, 2) = dt1(2)
+         dd(j, 2, 2) = dt3(2)
+         cpl(j) = dt1(3)
+         ! the continuum tangent (dp -> 0) condensed with tau22 held; D n =
+         ! 2 mu n (n is traceless)
+         nn = w1*w1 + w2*w2
+         den = hpv(j) + ng0(j) + 2.0_dp*mu*nn
+         c11 = l2m - 4.0_dp*mu*mu*nv(j, 1)**2/den
+         c12 = lam - 4.0_dp*mu*mu*nv(j, 1)*nv(j, 2)/den
+         c22 = l2m - 4.0_dp*mu*mu*nv(j, 2)**2/den
+         tng(j) = c11 - c12*c12/c22
+      end do
+   end subroutine mixed_results
 
    !> COMBINED_STATE_MAPPED: the cached flow stress belongs to the old
    !> points' plastic strains: marked unknown (law_j2's reason).
