@@ -338,15 +338,11 @@ contains
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in), optional :: s22n(n), s22(n)
       real(dp), intent(out), optional :: dsig_ds22(n)
-      real(dp) :: lam, l2m, e, nu, e_ps, sy, hp, a, w, an(3), al(3), dep(3), n_bad
+      real(dp) :: lam, l2m, e, nu, e_ps, sy, hp, n_bad
       ! every point's elastic trial
       real(dp) :: pnv(n), pv(n), xe(n), te(n, 3), xie(n, 3), q2(n)
       logical :: elastic(n)
-      ! the yielding points, gathered (mixed_return_block's arguments)
-      real(dp) :: tr0(n, 3), pp(n), ep(n), syn(n), hpn(n), aa(n, 2, max_back_stresses), &
-                  dpv(n), xv(n), nv(n, 3), syv(n), hpv(n), tau(n, 2), dd(n, 2, 2), cpl(n), tng(n)
-      integer :: k, i, j, np, idx(n)
-      logical :: ok
+      integer :: k, i, np
       ! the law is rate-independent and the same at every point
       associate (unused => stran11, unused2 => zbar)
       end associate
@@ -425,30 +421,64 @@ contains
             if (elastic(k)) dsig_ds22(k) = lam/l2m
          end do
       end if
-      ! the yielding points, gathered with their trial at no thickness
-      ! strain increment
-      np = 0
+      np = count(.not. elastic)
+      if (np == 0) return
+      if (present(dsig_ds22)) then
+         call yielding_update(law, n, np, elastic, stress, statev, ddsdde, sse, spd, dstran, pnv, pv, &
+                              pnewdt, dsig_ds22)
+      else
+         call yielding_update(law, n, np, elastic, stress, statev, ddsdde, sse, spd, dstran, pnv, pv, &
+                              pnewdt)
+      end if
+   end subroutine combined_update
+
+   !> YIELDING_UPDATE: combined_update's yielding points, gathered with
+   !> their trial at no thickness strain increment, returned together by
+   !> mixed_return_block, and their end state written back.
+   !>  law                       [in]     the law
+   !>  n, np                     [in]     points in the block, yielding points
+   !>  elastic                   [in]     (n) .false. at the yielding points
+   !>  stress, statev, ddsdde, sse, spd [in,out] the block's (update's)
+   !>  dstran                    [in]     (n, 2) the strain increments
+   !>  pnv, pv                   [in]     (n) the prescribed tau22 at the start and the end
+   !>  pnewdt                    [in,out] < 1 when a point found no root
+   !>  dsig_ds22                 [in,out] optional: d tau11 / d tau22
+   subroutine yielding_update(law, n, np, elastic, stress, statev, ddsdde, sse, spd, dstran, pnv, &
+                              pv, pnewdt, dsig_ds22)
+      class(combined_law_type), intent(in) :: law
+      integer, intent(in) :: n, np
+      logical, intent(in) :: elastic(n)
+      real(dp), intent(inout) :: stress(n, 2), statev(n, law%n_state), sse(n), spd(n), &
+                                 ddsdde(n, 2, 2), pnewdt
+      real(dp), intent(in) :: dstran(n, 2), pnv(n), pv(n)
+      real(dp), intent(inout), optional :: dsig_ds22(n)
+      real(dp) :: tr0(np, 3), pp(np), ep(np), syn(np), hpn(np), aa(np, 2, max_back_stresses), &
+                  dpv(np), xv(np), nv(np, 3), syv(np), hpv(np), tau(np, 2), dd(np, 2, 2), &
+                  cpl(np), tng(np), lam, l2m, a, w, an(3), al(3), dep(3)
+      integer :: k, i, j, idx(np)
+      logical :: ok
+      lam = law%lam
+      l2m = law%d(1, 1)
+      j = 0
       do k = 1, n
          if (elastic(k)) cycle
-         np = np + 1
-         idx(np) = k
-         tr0(np, 1) = stress(k, 1) + l2m*dstran(k, 1) + lam*dstran(k, 2)
-         tr0(np, 2) = pnv(k) + lam*(dstran(k, 1) + dstran(k, 2))
-         tr0(np, 3) = stress(k, 2) + lam*dstran(k, 1) + l2m*dstran(k, 2)
-         pp(np) = pv(k)
-         ep(np) = statev(k, isv_p)
-         syn(np) = statev(k, isv_flow)
-         hpn(np) = statev(k, isv_slope)
+         j = j + 1
+         idx(j) = k
+         tr0(j, 1) = stress(k, 1) + l2m*dstran(k, 1) + lam*dstran(k, 2)
+         tr0(j, 2) = pnv(k) + lam*(dstran(k, 1) + dstran(k, 2))
+         tr0(j, 3) = stress(k, 2) + lam*dstran(k, 1) + l2m*dstran(k, 2)
+         pp(j) = pv(k)
+         ep(j) = statev(k, isv_p)
+         syn(j) = statev(k, isv_flow)
+         hpn(j) = statev(k, isv_slope)
          do i = 1, law%n_back
             an = statev(k, isv_alpha + 3*(i - 1):isv_alpha + 2 + 3*(i - 1))
-            aa(np, 1, i) = dot_product(law%eig_vec(:, 1), an)
-            aa(np, 2, i) = dot_product(law%eig_vec(:, 2), an)
+            aa(j, 1, i) = dot_product(law%eig_vec(:, 1), an)
+            aa(j, 2, i) = dot_product(law%eig_vec(:, 2), an)
          end do
       end do
-      if (np == 0) return
-      call mixed_return_block(law, np, tr0(1:np, :), pp(1:np), ep(1:np), syn(1:np), hpn(1:np), &
-                              aa(1:np, :, :), dpv(1:np), xv(1:np), nv(1:np, :), syv(1:np), &
-                              hpv(1:np), tau(1:np, :), dd(1:np, :, :), cpl(1:np), tng(1:np), ok)
+      call mixed_return_block(law, np, tr0, pp, ep, syn, hpn, aa, dpv, xv, nv, syv, hpv, tau, dd, &
+                              cpl, tng, ok)
       if (.not. ok) then
          pnewdt = min(pnewdt, 0.5_dp)
          return
@@ -473,11 +503,11 @@ contains
          statev(k, law%isv_eps22) = statev(k, law%isv_eps22) + xv(j)
          statev(k, law%isv_tangent) = tng(j)
          spd(k) = spd(k) + w
-         sse(k) = elastic_energy([tau(j, 1), pp(j), tau(j, 2)], e, nu)
+         sse(k) = elastic_energy([tau(j, 1), pp(j), tau(j, 2)], law%youngs, law%poisson)
          ddsdde(k, :, :) = dd(j, :, :)
          if (present(dsig_ds22)) dsig_ds22(k) = cpl(j)
       end do
-   end subroutine combined_update
+   end subroutine yielding_update
 
    !> MIXED_RETURN_BLOCK: the backward-Euler update of np yielding points
    !> with the axial and width strain increments given and tau22
@@ -493,8 +523,7 @@ contains
    !> tau^T_22(0) + (lambda + 2 mu) x - 2 mu dp n_2, n = P xi / sigma_y =
    !> sum lambda_k xi_k v_k / sigma_y, is affine in x.  The one unknown dp
    !> then solves phi = sqrt(sum lambda_k xi_k^2) - sigma_y = 0, by Newton's
-   !> method on (1 + theta lambda_1) phi in a bracket (return_map's), all
-   !> points at once: each pass one vector loop and one vector call of the
+   !> method in a bracket (mixed_step), all points at once: each pass one vector loop and one vector call of the
    !> hardening law, and the last Newton step from |phi| <= tol_taylor
    !> sigma_y taken with sigma_y carried by Taylor's formula (law_j2's
    !> return_map_block).
@@ -530,7 +559,7 @@ contains
       real(dp), intent(out) :: dpv(np), xv(np), nv(np, 3), syv(np), hpv(np), tau(np, 2), &
                                dd(np, 2, 2), cpl(np), tng(np)
       logical, intent(out) :: ok
-      real(dp) :: t(np, 2), lo(np), hi(np), step(np), epv(np), g(np, 2), dc0(np, 2), xi(np, 2), &
+      real(dp) :: t(np, 2), lo(np), hi(np), step(np), epv(np), g(np, 2), dc0(np, 2), xi(np, 2), kap(np), &
                   theta(np), dtheta(np), beta(np), dbeta(np), phi(np), dphi(np)
       real(dp) :: n_far, n_out
       integer :: iter, j, k
@@ -552,7 +581,13 @@ contains
          call mixed_eval(law, np, t, tr0(:, 2), pp, aa, dpv, syv, hpv, xv, xi, g, dc0, theta, &
                          dtheta, beta, dbeta, phi, dphi)
          if (.not. all(ieee_is_finite(phi) .and. ieee_is_finite(dphi))) return
-         call mixed_step(law, np, phi, dphi, syv, theta, dtheta, dpv, lo, hi, step, n_far, n_out)
+         if (iter == 1) then
+            ! sbar's decay rate at dp = 0 (mixed_step)
+            do j = 1, np
+               kap(j) = max(-(dphi(j) + hpv(j))*syv(j)/(phi(j) + syv(j)), 0.0_dp)
+            end do
+         end if
+         call mixed_step(np, phi, dphi, syv, hpv, kap, dpv, lo, hi, step, n_far, n_out)
          if (n_far < 0.5_dp) then
             ok = .true.
             exit
@@ -674,29 +709,30 @@ contains
    !> MIXED_STEP: one safeguarded Newton step of mixed_return_block at
    !> every point (return_mapping's newton_step_block): the bracket
    !> [lo, hi] narrowed by the sign of phi, the Newton step on
-   !> (1 + theta lambda_1) phi, bisection (or doubling, before a bracket is
-   !> known) where it leaves the bracket; a point with |phi| <= tol_return
-   !> sigma_y keeps its dp.
-   !>  law          [in]  the law
+   !> F = phi (1 + kappa dp / sigma_y), bisection (or doubling, before a
+   !> bracket is known) where it leaves the bracket; a point with
+   !> |phi| <= tol_return sigma_y keeps its dp.  kappa is the decay rate of
+   !> sbar at dp = 0, sbar ~ sbar_0 / (1 + kappa dp / sigma_y): F is then
+   !> nearly linear in dp.  (With the larger rate of the three-component
+   !> return, 3 mu for von Mises, where the thickness stress is held the
+   !> steps overshoot and a large increment took some 20 bisections.)
    !>  np           [in]  number of points
    !>  phi, dphi    [in]  (np) the residual and its derivative
-   !>  syv          [in]  (np) sigma_y
-   !>  theta, dtheta [in] (np) theta and its derivative
+   !>  syv, hpv     [in]  (np) sigma_y and its slope
+   !>  kap          [in]  (np) kappa
    !>  dpv          [in]  (np) dp
    !>  lo, hi       [in,out] (np) the bracket
    !>  step         [out] (np) the next dp
    !>  n_far        [out] points not yet at |phi| <= tol_return sigma_y
    !>  n_out        [out] of these, points too far for the Taylor finish
-   pure subroutine mixed_step(law, np, phi, dphi, syv, theta, dtheta, dpv, lo, hi, step, n_far, n_out)
-      class(combined_law_type), intent(in) :: law
+   pure subroutine mixed_step(np, phi, dphi, syv, hpv, kap, dpv, lo, hi, step, n_far, n_out)
       integer, intent(in) :: np
-      real(dp), intent(in) :: phi(np), dphi(np), syv(np), theta(np), dtheta(np), dpv(np)
+      real(dp), intent(in) :: phi(np), dphi(np), syv(np), hpv(np), kap(np), dpv(np)
       real(dp), intent(inout) :: lo(np), hi(np)
       real(dp), intent(out) :: step(np), n_far, n_out
-      real(dp) :: far, near, f, fd, s, l, h, den, l1
+      real(dp) :: far, near, f, fd, s, l, h, den
       logical :: inside
       integer :: j
-      l1 = law%eig_val(1)
       n_far = 0.0_dp
       n_out = 0.0_dp
       do j = 1, np
@@ -705,9 +741,9 @@ contains
          h = merge(hi(j), dpv(j), phi(j) > 0.0_dp)
          lo(j) = l
          hi(j) = h
-         den = 1.0_dp + theta(j)*l1
+         den = 1.0_dp + kap(j)*dpv(j)/syv(j)
          f = phi(j)*den
-         fd = dphi(j)*den + phi(j)*l1*dtheta(j)
+         fd = dphi(j)*den + phi(j)*kap(j)*(syv(j) - dpv(j)*hpv(j))/syv(j)**2
          s = dpv(j) - f/merge(fd, -1.0_dp, fd < 0.0_dp)
          inside = fd < 0.0_dp .and. s > l .and. s < h
          s = merge(s, merge(0.5_dp*(l + h), max(2.0_dp*l, 1.0e-8_dp), h < huge(1.0_dp)), inside)
@@ -734,8 +770,11 @@ contains
                               beta(np), dbeta(np)
       real(dp), intent(out) :: nv(np, 3), tau(np, 2), dd(np, 2, 2), cpl(np), tng(np)
       real(dp) :: mu, lam, l2m, l1, l2, e1, e2, d1, d2, v(3, 2), dtk(2, 3), dtr(3, 3), dpin(3), &
-                  ng0(np), nn, a1, a2, b1, b2, s, a11, a12, a21, a22, det, r1, r2, ddp, ddx, &
-                  dxi1, dxi2, dn1, dn3, w1, w2, an, a, ci, gi, den, c11, c12, c22, dt1(3), dt3(3)
+                  ng0(np), nn, s, r1, r2, ddp, ddx, dxi1, dxi2, dn1, dn3, w1, w2, an, a, ci, gi, &
+                  den, c11, c12, c22
+      ! per point: the 2 x 2 system, 1/sigma_y, the columns d tau11, d tau33
+      real(dp), dimension(np) :: a1, a2, b1, b2, a11, a12, a21, a22, rdet, rsy
+      real(dp) :: dt1(np, 3), dt3(np, 3)
       integer :: i, j, c
       mu = law%mu
       lam = law%lam
@@ -772,41 +811,25 @@ contains
          end do
       end do
       do j = 1, np
-         w1 = l1*xi(j, 1)/syv(j)
-         w2 = l2*xi(j, 2)/syv(j)
+         rsy(j) = 1.0_dp/syv(j)
+         w1 = l1*xi(j, 1)*rsy(j)
+         w2 = l2*xi(j, 2)*rsy(j)
          nv(j, 1) = v(1, 1)*w1 + v(1, 2)*w2
          nv(j, 2) = v(2, 1)*w1 + v(2, 2)*w2
          nv(j, 3) = v(3, 1)*w1 + v(3, 2)*w2
          tau(j, 1) = tr0(j, 1) + lam*xv(j) - 2.0_dp*mu*dpv(j)*nv(j, 1)
          tau(j, 2) = tr0(j, 3) + lam*xv(j) - 2.0_dp*mu*dpv(j)*nv(j, 3)
          ! the 2 x 2 system in (d dp, d x): d xi_k = A_k d dp + B_k d x + g_k d t_k
-         a1 = -g(j, 1)*l1*dtheta(j)*xi(j, 1) + g(j, 1)*dc0(j, 1)
-         a2 = -g(j, 2)*l2*dtheta(j)*xi(j, 2) + g(j, 2)*dc0(j, 2)
-         b1 = g(j, 1)*d1
-         b2 = g(j, 2)*d2
+         a1(j) = -g(j, 1)*l1*dtheta(j)*xi(j, 1) + g(j, 1)*dc0(j, 1)
+         a2(j) = -g(j, 2)*l2*dtheta(j)*xi(j, 2) + g(j, 2)*dc0(j, 2)
+         b1(j) = g(j, 1)*d1
+         b2(j) = g(j, 2)*d2
          s = l1*e1*xi(j, 1) + l2*e2*xi(j, 2)
-         a11 = -(dbeta(j)*s + beta(j)*(l1*e1*a1 + l2*e2*a2))
-         a12 = l2m - beta(j)*(l1*e1*b1 + l2*e2*b2)
-         a21 = l1*xi(j, 1)*a1 + l2*xi(j, 2)*a2 - syv(j)*hpv(j)
-         a22 = l1*xi(j, 1)*b1 + l2*xi(j, 2)*b2
-         det = a11*a22 - a12*a21
-         do c = 1, 3
-            r1 = dpin(c) - dtr(2, c) + beta(j)*(l1*e1*g(j, 1)*dtk(1, c) + l2*e2*g(j, 2)*dtk(2, c))
-            r2 = -(l1*xi(j, 1)*g(j, 1)*dtk(1, c) + l2*xi(j, 2)*g(j, 2)*dtk(2, c))
-            ddp = (r1*a22 - a12*r2)/det
-            ddx = (a11*r2 - a21*r1)/det
-            dxi1 = a1*ddp + b1*ddx + g(j, 1)*dtk(1, c)
-            dxi2 = a2*ddp + b2*ddx + g(j, 2)*dtk(2, c)
-            dn1 = (l1*dxi1*v(1, 1) + l2*dxi2*v(1, 2) - nv(j, 1)*hpv(j)*ddp)/syv(j)
-            dn3 = (l1*dxi1*v(3, 1) + l2*dxi2*v(3, 2) - nv(j, 3)*hpv(j)*ddp)/syv(j)
-            dt1(c) = dtr(1, c) + lam*ddx - 2.0_dp*mu*(ddp*nv(j, 1) + dpv(j)*dn1)
-            dt3(c) = dtr(3, c) + lam*ddx - 2.0_dp*mu*(ddp*nv(j, 3) + dpv(j)*dn3)
-         end do
-         dd(j, 1, 1) = dt1(1)
-         dd(j, 2, 1) = dt3(1)
-         dd(j, 1, 2) = dt1(2)
-         dd(j, 2, 2) = dt3(2)
-         cpl(j) = dt1(3)
+         a11(j) = -(dbeta(j)*s + beta(j)*(l1*e1*a1(j) + l2*e2*a2(j)))
+         a12(j) = l2m - beta(j)*(l1*e1*b1(j) + l2*e2*b2(j))
+         a21(j) = l1*xi(j, 1)*a1(j) + l2*xi(j, 2)*a2(j) - syv(j)*hpv(j)
+         a22(j) = l1*xi(j, 1)*b1(j) + l2*xi(j, 2)*b2(j)
+         rdet(j) = 1.0_dp/(a11(j)*a22(j) - a12(j)*a21(j))
          ! the continuum tangent (dp -> 0) condensed with tau22 held; D n =
          ! 2 mu n (n is traceless)
          nn = w1*w1 + w2*w2
@@ -815,6 +838,27 @@ contains
          c12 = lam - 4.0_dp*mu*mu*nv(j, 1)*nv(j, 2)/den
          c22 = l2m - 4.0_dp*mu*mu*nv(j, 2)**2/den
          tng(j) = c11 - c12*c12/c22
+      end do
+      do c = 1, 3
+         do j = 1, np
+            r1 = dpin(c) - dtr(2, c) + beta(j)*(l1*e1*g(j, 1)*dtk(1, c) + l2*e2*g(j, 2)*dtk(2, c))
+            r2 = -(l1*xi(j, 1)*g(j, 1)*dtk(1, c) + l2*xi(j, 2)*g(j, 2)*dtk(2, c))
+            ddp = (r1*a22(j) - a12(j)*r2)*rdet(j)
+            ddx = (a11(j)*r2 - a21(j)*r1)*rdet(j)
+            dxi1 = a1(j)*ddp + b1(j)*ddx + g(j, 1)*dtk(1, c)
+            dxi2 = a2(j)*ddp + b2(j)*ddx + g(j, 2)*dtk(2, c)
+            dn1 = (l1*dxi1*v(1, 1) + l2*dxi2*v(1, 2) - nv(j, 1)*hpv(j)*ddp)*rsy(j)
+            dn3 = (l1*dxi1*v(3, 1) + l2*dxi2*v(3, 2) - nv(j, 3)*hpv(j)*ddp)*rsy(j)
+            dt1(j, c) = dtr(1, c) + lam*ddx - 2.0_dp*mu*(ddp*nv(j, 1) + dpv(j)*dn1)
+            dt3(j, c) = dtr(3, c) + lam*ddx - 2.0_dp*mu*(ddp*nv(j, 3) + dpv(j)*dn3)
+         end do
+      end do
+      do j = 1, np
+         dd(j, 1, 1) = dt1(j, 1)
+         dd(j, 2, 1) = dt3(j, 1)
+         dd(j, 1, 2) = dt1(j, 2)
+         dd(j, 2, 2) = dt3(j, 2)
+         cpl(j) = dt1(j, 3)
       end do
    end subroutine mixed_results
 
