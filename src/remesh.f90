@@ -21,8 +21,10 @@
 !>    sense, slip and dissipation), with its position and gap set to the
 !>    new station's own, so that no slip is counted for the move, and in
 !>    contact as its gap says (out of contact without a slip history).
-!> The caller re-equilibrates the mapped state at the same load before the
-!> next increment (analysis's refine_at_exit).
+!> The mapped state is then re-equilibrated at the same load before the
+!> next increment (reequilibrate).  The driver decides when and where
+!> (analysis's split_at_exit, stepper's decide_split); the mesh and the
+!> state change here.
 module remesh
    use kinds, only: dp
    use errors, only: alloc_message
