@@ -8,7 +8,7 @@
 !> `usage` below and docs/user-guide.md.
 program drawbead
    use kinds, only: dp, output_unit, error_unit
-   use errors, only: error_list, report_errors, print_error, warn, exit_ok, exit_input, &
+   use errors, only: error_list, report_errors, print_error, exit_ok, exit_input, &
                      exit_noconvergence, exit_write, exit_interrupted, exit_memory
    use deck, only: deck_type
    use deck_reader, only: read_deck, echo_deck, list_variables
@@ -89,24 +89,32 @@ program drawbead
       rec%status = run_write_failed
       rec%message = 'cannot write '//iomsg
    end if
-   select case (rec%status)
-   case (run_ok)
-      call finish('done', exit_ok)
-   case (run_no_convergence)
-      call print_error(trim(rec%message), 'run_phase')
-      call finish('no convergence (results so far kept)', exit_noconvergence)
-   case (run_interrupted)
-      call print_error(trim(rec%message), 'run_phase')
-      call finish('interrupted (results so far kept)', exit_interrupted)
-   case (run_out_of_memory)
-      call print_error(trim(rec%message), 'memory')
-      call finish('out of memory (results so far kept)', exit_memory)
-   case default
-      call print_error(trim(rec%message), 'output')
-      call finish('a result file could not be written', exit_write)
-   end select
+   call end_run(rec)
 
 contains
+
+   !> END_RUN: the end of a run by its status: done, or the error and the
+   !> exit code (results so far kept).
+   !>  rec  [in] the run's record (status, message)
+   subroutine end_run(rec)
+      type(run_record), intent(in) :: rec
+      select case (rec%status)
+      case (run_ok)
+         call finish('done', exit_ok)
+      case (run_no_convergence)
+         call print_error(trim(rec%message), 'run_phase')
+         call finish('no convergence (results so far kept)', exit_noconvergence)
+      case (run_interrupted)
+         call print_error(trim(rec%message), 'run_phase')
+         call finish('interrupted (results so far kept)', exit_interrupted)
+      case (run_out_of_memory)
+         call print_error(trim(rec%message), 'memory')
+         call finish('out of memory (results so far kept)', exit_memory)
+      case default
+         call print_error(trim(rec%message), 'output')
+         call finish('a result file could not be written', exit_write)
+      end select
+   end subroutine end_run
 
    !> STOP_IN_FIRST_PASS: the first pass of refine_neck stopped early (its
    !> summary.txt and the run's say so, module passes): the error, and the
