@@ -1,41 +1,53 @@
-!> analysis -- the increment loop of a run: the boundary conditions of
-!> each phase, Newton per increment, commit, the criteria read off each
-!> converged state and a row of output per increment.
+!> analysis -- the driver of a run's phases: the boundary conditions of
+!> each phase and the increment loop, a stepper with named hooks.
 !>
 !> Phase 'lock': the lower tool rises by H (load parameter), right edge held.
 !> Phase 'pull': tools held at H = lock depth, right edge pulled by delta.
 !> Left edge clamped (v = w = w' = 0) or free (w = w' = 0, axial force
 !> -back_tension applied).  docs/theory.md §1, §8.1.
+!>
+!> Per increment (run_phase, docs/theory.md §8): solve_increment (the
+!> predictor, Newton, and a cutback or redo of an attempt that failed,
+!> jumped or erred, §8.2-8.3), commit_increment (§8.4), the records
+!> (stepper's record_increment), check_criteria (§7.1-7.4), write_rows (the
+!> result files), console_line, ends_run (a failed write, a signal,
+!> tearing), the neck's refinement when stepper's decide_split says so
+!> (split_at_exit: the mesh changed by module remesh, §7.6) and the next
+!> increment (§8.3).  The loop's state is stepper's phase_run.
 module analysis
    use kinds, only: dp, output_unit
    use phases, only: phase_lock, phase_pull
-   use errors, only: warn, alloc_message
-   use text, only: itoa
+   use errors, only: warn
    use hermite, only: n_gauss
-   use element, only: igp_strain
-   use band, only: band_matrix, band_init, band_error_message
-   use mesh, only: half_band, node_dof, dof_v, dof_w, dof_w_slope, dofs_per_node
+   use band, only: band_error_message
+   use mesh, only: node_dof, dof_v, dof_w, dof_w_slope
    use model, only: model_type, state_type, load_type, load_init
    use contact, only: ich_penetration
    use controls, only: controls_type
-   use record, only: run_record, record_pull, record_lock, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
-                     run_out_of_memory, &
-                     split_note
+   use record, only: run_record, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
+                     run_out_of_memory, split_note
    use remesh, only: last_radius_exit, exit_pieces, split_elements, split_field, split_stations, &
-                     exit_zone_before, exit_resplit_before
-   use solver, only: newton_result, newton_solve, commit_state, assemble, newton_ok, newton_cutback, &
-                     newton_singular, newton_solve_failed
-   use step_control, only: judge_force_change, next_increment, cutback_factor, extrapolation_error, &
-                           judge_error, displacement_error, bound_after_failure, bound_past_section_maximum
-   use tearing, only: check_localization, check_fold, strain_limit_indicator, check_load_maximum, &
-                      tear_at_snap_back, element_length_at, maximum_approaching
-   use energy, only: energy_totals, add_increment_work
+                     exit_zone_before, reequilibrate, reequilibration, reeq_material, reeq_no_equilibrium, &
+                     reeq_out_of_memory
+   use solver, only: newton_solve, commit_state, newton_ok, newton_solve_failed
+   use step_control, only: judge_force_change, cutback_factor, extrapolation_error, judge_error, &
+                           displacement_error
+   use tearing, only: check_localization, check_fold, check_load_maximum, tear_at_snap_back, &
+                      element_length_at
+   use energy, only: energy_totals
    use output, only: output_files, write_row, write_strains, write_snapshot, write_progress
    use os, only: stop_requested, signal_name
    use tools, only: tool_level
+   use stepper, only: phase_run, phase_run_init, phase_run_follow, predict, read_forces, record_increment, &
+                      watches_maximum, stop_at_tearing, decide_split, note_split, records_after_split, &
+                      snapshot_due, next_snapshot, failure_tag, size_next_increment
    implicit none
    private
    public :: run_phase, phase_load
+
+   !> solve_increment's outcome: the attempt converged and is accepted; it
+   !> is to be tried again (shorter); the phase ends (rec%status says why)
+   integer, parameter :: attempt_accepted = 0, attempt_retry = 1, attempt_stop = 2
 
 contains
 
@@ -92,13 +104,16 @@ contains
       w = min(max(tool_level(m%tool(2), x) + shift, 0.0_dp), tool_level(m%tool(1), x))
    end function edge_height
 
+
    !> RUN_PHASE: advance the load parameter from p0 to p1 with adaptive
-   !> increments; commit, check the criteria and write a row per increment.
+   !> increments (docs/theory.md §8); after each converged increment the
+   !> records, the criteria, a row of output and a console line; the neck's
+   !> refinement when due (§7.6).  The hooks are named in the module header.
    !>  m     [in,out] model (its elements split while pulling, §7.6)
    !>  ctl   [in]  controls (increments, tolerances, criteria, output)
    !>  s     [in,out] state, converged at p0 on entry
-   !>  phase [in]  'lock' or 'pull'
-   !>  p0,p1 [in]  start and end of the load parameter
+   !>  phase [in]  phase_lock or phase_pull
+   !>  p0,p1 [in]  start and end of the load parameter, mm
    !>  out   [in,out] open output files (snapshots.dat counts its blocks)
    !>  rec   [in,out] run record
    subroutine run_phase(m, ctl, s, phase, p0, p1, out, rec)
@@ -109,224 +124,285 @@ contains
       real(dp), intent(in) :: p0, p1
       type(output_files), intent(inout) :: out
       type(run_record), intent(inout) :: rec
-      type(band_matrix) :: kb
-      real(dp), allocatable :: nl_old(:), r(:), u_prev(:), ind_old(:, :), dof_scale(:), x_old(:)
-      integer, allocatable :: pieces(:)
-      type(load_type) :: ld
-      type(newton_result) :: nr
-      real(dp) :: p, dt, dt_prev, h, eh, dt_failed
-      real(dp) :: reaction, punch, lift, pen, min_ind, force, force_change, target, tool_work
-      real(dp) :: next_snapshot, ell, prev_conjugate, err, dt_err, err_redone
-      integer :: pulled
-      logical :: have_prev, have_force_prev, redo, paper_met, snapped, split_due
-      character(len=16) :: tag
+      type(phase_run) :: pr
+      integer :: outcome
+      logical :: ends, split_due
+      call phase_run_init(pr, m, ctl, s, phase, p0, p1, rec)
+      if (rec%status /= run_ok) return
+      do while (pr%p < p1 - 1.0e-12_dp*pr%h)
+         call solve_increment(pr, m, ctl, s, rec, outcome)
+         if (outcome == attempt_stop) return
+         if (outcome == attempt_retry) cycle
+         call commit_increment(pr, m, s, rec)
+         call record_increment(pr, s, watches_maximum(m, ctl, phase), rec)
+         call check_criteria(pr, m, ctl, s, rec)
+         call write_rows(pr, m, ctl, s, rec, out)
+         call console_line(pr, ctl, rec)
+         call ends_run(pr, ctl, out, rec, ends)
+         if (ends) return
+         call decide_split(m, s, phase, rec, split_due)
+         if (split_due) then
+            call split_at_exit(pr, m, ctl, s, rec)
+            if (rec%status /= run_ok) return
+         end if
+         call size_next_increment(pr, ctl, m%has_tools)
+      end do
+   end subroutine run_phase
+
+   !> SOLVE_INCREMENT: one attempt at the next increment, pr%dt (cut to the
+   !> phase's end): the phase's load at p + dt, the predictor, Newton
+   !> (§8.2); a failed solve is cut back (failed_attempt); a converged one
+   !> has its forces read and is judged (judge_attempt: a force jump or a
+   !> local error too large is redone, §8.3).
+   !>  pr       [in,out] the loop's state: dt, ld, nr, r, the forces
+   !>  m        [in]     model
+   !>  ctl      [in]     controls
+   !>  s        [in,out] the trial state (u1 back at u after a cutback)
+   !>  rec      [in,out] counts; status and message when the phase ends
+   !>  outcome  [out]    attempt_accepted, attempt_retry or attempt_stop
+   subroutine solve_increment(pr, m, ctl, s, rec, outcome)
+      type(phase_run), intent(inout) :: pr
+      type(model_type), intent(in) :: m
+      type(controls_type), intent(in) :: ctl
+      type(state_type), intent(inout) :: s
+      type(run_record), intent(inout) :: rec
+      integer, intent(out) :: outcome
+      pr%dt = min(pr%dt, pr%p1 - pr%p)
+      call phase_load(m, pr%phase, pr%p + pr%dt, pr%ld)
+      call predict(pr, ctl, s)
+      call newton_solve(m, s, pr%ld, pr%kb, pr%r, ctl%max_iterations, ctl%tolerance, pr%nr, &
+                        count_states=ctl%log_residuals)
+      rec%newton_iterations = rec%newton_iterations + pr%nr%iterations
+      rec%assemblies = rec%assemblies + pr%nr%assemblies
+      if (pr%nr%status /= newton_ok) then
+         call failed_attempt(pr, m, ctl, s, rec, outcome)
+         return
+      end if
+      call read_forces(pr, s)
+      call judge_attempt(pr, ctl, s, rec, outcome)
+   end subroutine solve_increment
+
+   !> FAILED_ATTEMPT: Newton failed (§8.2, §8.3): the increment is cut back
+   !> by cutback_factor and its length bounds the next ones; a failure of
+   !> the linear solve itself, or an increment below min_increment, ends the
+   !> phase with no_convergence -- unless, with stop_at_localization, the
+   !> sheet has passed a maximum of the watched force and the paper's
+   !> criterion: past tearing it may have no nearby equilibrium, and the
+   !> maximum is the tearing point (the snap-back of a forming neck, §7.4).
+   !>  pr       [in,out] the loop's state: dt, dt_failed
+   !>  m        [in]     model
+   !>  ctl      [in]     controls
+   !>  s        [in,out] u1 back at the converged u
+   !>  rec      [in,out] cutbacks; status, message, the tearing point
+   !>  outcome  [out]    attempt_retry or attempt_stop
+   subroutine failed_attempt(pr, m, ctl, s, rec, outcome)
+      type(phase_run), intent(inout) :: pr
+      type(model_type), intent(in) :: m
+      type(controls_type), intent(in) :: ctl
+      type(state_type), intent(inout) :: s
+      type(run_record), intent(inout) :: rec
+      integer, intent(out) :: outcome
+      logical :: snapped
+      rec%cutbacks = rec%cutbacks + 1
+      write (output_unit, '(a5,1x,a,es10.3,a,i3,a,es9.2,2a)') pr%phase, 'cutback  d/h=', pr%dt/pr%h, &
+         '  it', pr%nr%iterations, '  res', pr%nr%residual(max(pr%nr%iterations - 1, 0)), '  ', &
+         trim(failure_tag(pr%nr))
+      outcome = attempt_stop
+      if (pr%nr%status == newton_solve_failed) then
+         ! not a property of the increment: cutting it back cannot help
+         rec%message = 'in '//pr%phase//': '//band_error_message(pr%nr%solve_info)
+         rec%status = run_no_convergence
+         return
+      end if
+      pr%dt_failed = pr%dt
+      pr%dt = cutback_factor*pr%dt
+      s%u1 = s%u
+      if (pr%dt < ctl%min_increment) then
+         write (rec%message, '(3a,es10.3,a)') 'no convergence in ', pr%phase, &
+            ' at load/h = ', pr%p/pr%h, ': increment below min_increment'
+         if (ctl%stop_at_localization) then
+            if (watches_maximum(m, ctl, pr%phase)) call tear_at_snap_back(m, s, pr%phase, rec, snapped)
+            if (rec%localized) return
+         end if
+         rec%status = run_no_convergence
+         return
+      end if
+      outcome = attempt_retry
+   end subroutine failed_attempt
+
+   !> JUDGE_ATTEMPT: a converged attempt is redone shorter when its force
+   !> jumped (step_control's judge_force_change) or its local error is too
+   !> large (§8.3): locking, that of the punch force (smooth, the result
+   !> read at full lock); pulling, that of the displacements (the pull force
+   !> carries a noise of stations entering contact and small branch jumps).
+   !> A redo shortens the increment by q < 0.8 and a second-order estimate
+   !> by at least as much (by q^2 without an earlier increment): one that
+   !> kept more than half of its value marks a jump of the path (the state
+   !> moving to a neighbouring branch), which no shorter increment
+   !> resolves; it is taken as it is.
+   !>  pr       [in,out] the loop's state: force_change, target, err, dt_err,
+   !>                    err_redone; dt when redone
+   !>  ctl      [in]     controls
+   !>  s        [in,out] u1 back at the converged u when redone
+   !>  rec      [in,out] cutbacks
+   !>  outcome  [out]    attempt_accepted or attempt_retry
+   subroutine judge_attempt(pr, ctl, s, rec, outcome)
+      type(phase_run), intent(inout) :: pr
+      type(controls_type), intent(in) :: ctl
+      type(state_type), intent(inout) :: s
+      type(run_record), intent(inout) :: rec
+      integer, intent(out) :: outcome
+      logical :: redo
+      outcome = attempt_retry
+      call judge_force_change(ctl, pr%phase, pr%p, pr%dt, pr%force, rec%last_conjugate, pr%eh, &
+                              pr%force_change, pr%target, redo)
+      if (redo) then
+         rec%cutbacks = rec%cutbacks + 1
+         write (output_unit, '(a5,1x,a,es10.3,a,f6.2)') pr%phase, 'cutback  d/h=', pr%dt/pr%h, &
+            '  force jump', pr%force_change
+         pr%dt = cutback_factor*pr%dt
+         s%u1 = s%u
+         return
+      end if
+      pr%err = -1.0_dp
+      if (pr%phase == phase_lock) then
+         if (pr%have_force_prev) pr%err = extrapolation_error(pr%force, rec%last_conjugate, pr%prev_conjugate, &
+                                                              pr%dt, pr%dt_prev, pr%eh)
+      else if (pr%have_prev) then
+         pr%err = displacement_error(s%u1, s%u, pr%u_prev, pr%dt, pr%dt_prev, pr%h, pr%dof_scale)
+      end if
+      call judge_error(ctl, pr%err, pr%dt, redo, pr%dt_err, &
+                       final=pr%phase == phase_lock .and. pr%p + pr%dt >= pr%p1 - 1.0e-12_dp*pr%h)
+      if (redo .and. pr%err_redone > 0.0_dp) redo = pr%err <= 0.5_dp*pr%err_redone
+      if (redo) then
+         pr%err_redone = pr%err
+         rec%cutbacks = rec%cutbacks + 1
+         write (output_unit, '(a5,1x,a,es10.3,a,es9.2)') pr%phase, 'cutback  d/h=', pr%dt/pr%h, &
+            '  error', pr%err
+         pr%dt = pr%dt_err
+         s%u1 = s%u
+         return
+      end if
+      pr%err_redone = -1.0_dp
+      outcome = attempt_accepted
+   end subroutine judge_attempt
+
+   !> COMMIT_INCREMENT: the accepted attempt becomes the converged state
+   !> (§8.4); the converged dofs and indicator before it are kept (the
+   !> predictor, the error estimate, the work and the paper's criterion
+   !> read them).
+   !>  pr   [in,out] p advanced; u_prev, ind_old, dt_prev
+   !>  m    [in]     model
+   !>  s    [in,out] committed
+   !>  rec  [in,out] increments
+   subroutine commit_increment(pr, m, s, rec)
+      type(phase_run), intent(inout) :: pr
+      type(model_type), intent(in) :: m
+      type(state_type), intent(inout) :: s
+      type(run_record), intent(inout) :: rec
+      pr%ind_old = s%indicator
+      pr%u_prev = s%u
+      pr%dt_prev = pr%dt
+      call commit_state(m, s, pr%ld%tool_shift)
+      pr%p = pr%p + pr%dt
+      rec%increments = rec%increments + 1
+   end subroutine commit_increment
+
+   !> CHECK_CRITERIA: what the converged state says (after its records):
+   !> the penetration (above 0.05h the penalty is too soft for the forces
+   !> at hand, §5: warned once per run), the fold check (§7.3), the paper's
+   !> and the averaged-strain criteria (§7.1, §7.2), with tearing_criterion
+   !> = 'section' the paper's tearing point (no mesh limit in this model,
+   !> §7.1: said once), and the load maximum of the watched force (§7.4).
+   !>  pr   [in,out] pen, min_ind, paper_met, nl_old
+   !>  m    [in]     model
+   !>  ctl  [in]     controls
+   !>  s    [in]     the converged state
+   !>  rec  [in,out] what the criteria found
+   subroutine check_criteria(pr, m, ctl, s, rec)
+      type(phase_run), intent(inout) :: pr
+      type(model_type), intent(in) :: m
+      type(controls_type), intent(in) :: ctl
+      type(state_type), intent(in) :: s
+      type(run_record), intent(inout) :: rec
       character(len=200) :: msg
-      character(len=:), allocatable :: alloc_msg
-      integer :: stat
-      h = m%thickness
-      eh = m%youngs*h
-      ell = ctl%tearing_length_over_h*h
-      pulled = node_dof(m%n_nodes, dof_v)
-      ! the phase's large arrays: a failed allocation stops the run with
-      ! status out_of_memory (issue 28, item 6), the results so far kept
-      allocate (r(m%n_dof), u_prev(m%n_dof), ind_old(n_gauss, m%n_el), dof_scale(m%n_dof), &
-                stat=stat)
-      if (stat /= 0) then
-         rec%status = run_out_of_memory
-         rec%message = 'in '//phase//': '//alloc_message('the work arrays of '//itoa(m%n_el)//' elements', &
-                                                         8.0_dp*real(3*m%n_dof + n_gauss*m%n_el, dp))
-         return
+      pr%pen = 0.0_dp
+      if (m%has_tools) pr%pen = max(0.0_dp, maxval(s%cn(ich_penetration, :, :, :)))/pr%h
+      if (pr%pen > 0.05_dp .and. rec%max_penetration <= 0.05_dp) then
+         write (msg, '(a,es9.3,a,es10.3,a)') 'penetration ', pr%pen, 'h > 0.05h at load/h = ', &
+            pr%p/pr%h, ' in '//pr%phase//': raise &tools penalty'
+         call warn(msg, 'run_phase')
       end if
-      dof_scale = phase_dof_scale(m)
-      call band_init(kb, m%n_dof, half_band, half_band, alloc_msg)
-      if (len(alloc_msg) > 0) then
-         rec%status = run_out_of_memory
-         rec%message = 'in '//phase//': '//alloc_msg
-         return
+      rec%max_penetration = max(rec%max_penetration, pr%pen)
+      call check_fold(m, s, pr%phase, pr%p, ctl%fold_curvature, rec)
+      pr%min_ind = minval(s%indicator)
+      call check_localization(m, s, pr%phase, pr%p, pr%dt, pr%ind_old, pr%nl_old, pr%ell, rec, pr%paper_met)
+      if (pr%paper_met .and. ctl%tearing_criterion == 'section') then
+         rec%torn = .true.
+         rec%tear_phase = rec%loc_phase
+         rec%tear_load = rec%load_cr
+         rec%tear_s = rec%s_star
+         rec%tear_element = element_length_at(m, rec%s_star)
+         call warn('tearing point by the paper''s pointwise criterion (tearing_criterion = ''section''): '// &
+                   'it has no mesh limit in this model and moves with the mesh (docs/theory.md §7.1)', 'run_phase')
       end if
-      p = p0
-      dt = ctl%initial_increment
-      ! the force doing work on the load parameter: F while locking (starts
-      ! at 0 on the flat sheet), N while pulling (the reaction reached so far)
-      rec%last_conjugate = 0.0_dp
-      if (phase == phase_pull .and. allocated(rec%reactions)) rec%last_conjugate = rec%reactions(pulled)
-      nl_old = strain_limit_indicator(m, s%gpn(igp_strain, :, :), ell)
-      ! each phase's force has its own maximum (the lock's tension, the pull's N)
-      rec%max_at = 0
-      if (phase == phase_pull) then
-         rec%work_pull_start = rec%work
-         call energy_totals(m, s, rec%energy_pull_start)
-      end if
-      dt_prev = dt
-      have_prev = .false.
-      ! the error estimate of the last attempt redone at this load (< 0: none)
-      err_redone = -1.0_dp
-      ! the force two converged states back, for the error estimate
-      prev_conjugate = 0.0_dp
-      have_force_prev = .false.
-      dt_failed = huge(1.0_dp)
-      next_snapshot = p0 + ctl%snapshot_every_over_h*h
-      do while (p < p1 - 1.0e-12_dp*h)
-         dt = min(dt, p1 - p)
-         call phase_load(m, phase, p + dt, ld)
-         if (have_prev .and. ctl%predictor) then
-            s%u1 = s%u + (dt/dt_prev)*(s%u - u_prev)
-         else
-            s%u1 = s%u
-         end if
-         call newton_solve(m, s, ld, kb, r, ctl%max_iterations, ctl%tolerance, nr, &
-                           count_states=ctl%log_residuals)
-         rec%newton_iterations = rec%newton_iterations + nr%iterations
-         rec%assemblies = rec%assemblies + nr%assemblies
-         if (nr%status /= newton_ok) then
-            rec%cutbacks = rec%cutbacks + 1
-            select case (nr%status)
-            case (newton_cutback)
-               write (tag, '(a,f5.2)') 'pnewdt ', nr%pnewdt
-            case (newton_singular)
-               tag = 'singular'
-            case default
-               tag = 'diverged'
-               ! (a residual that ends within a few times its round-off
-               ! floor stalled there, docs/theory.md §8.2)
-               if (nr%residual(max(nr%iterations - 1, 0)) <= 4.0_dp*nr%round_off(max(nr%iterations - 1, 0))) &
-                  tag = 'round-off'
-            end select
-            write (output_unit, '(a5,1x,a,es10.3,a,i3,a,es9.2,2a)') phase, 'cutback  d/h=', dt/h, &
-               '  it', nr%iterations, '  res', nr%residual(max(nr%iterations - 1, 0)), '  ', trim(tag)
-            if (nr%status == newton_solve_failed) then
-               ! not a property of the increment: cutting it back cannot help
-               rec%message = 'in '//phase//': '//band_error_message(nr%solve_info)
-               rec%status = run_no_convergence
-               return
-            end if
-            dt_failed = dt
-            dt = cutback_factor*dt
-            s%u1 = s%u
-            if (dt < ctl%min_increment) then
-               write (rec%message, '(3a,es10.3,a)') 'no convergence in ', phase, &
-                  ' at load/h = ', p/h, ': increment below min_increment'
-               ! past the paper's tearing point the sheet may have no nearby
-               ! equilibrium: that ends the run normally (the neck has formed);
-               ! past a maximum of the pull force it is the tearing point
-               ! (docs/theory.md §7.4)
-               if (ctl%stop_at_localization) then
-                  if (watches_maximum(m, ctl, phase)) call tear_at_snap_back(m, s, phase, rec, snapped)
-                  if (rec%localized) return
-               end if
-               rec%status = run_no_convergence
-               return
-            end if
-            cycle
-         end if
-         ! forces: N = internal force at the pulled dof, F = lower tool upward
-         ! force on the sheet, lift = upward force of the sheet on the upper tool
-         reaction = r(pulled)
-         punch = s%tool_force(2, 2)
-         lift = -s%tool_force(2, 1)
-         force = merge(punch, reaction, phase == phase_lock)
-         call judge_force_change(ctl, phase, p, dt, force, rec%last_conjugate, eh, &
-                                 force_change, target, redo)
-         if (redo) then
-            rec%cutbacks = rec%cutbacks + 1
-            write (output_unit, '(a5,1x,a,es10.3,a,f6.2)') phase, 'cutback  d/h=', dt/h, &
-               '  force jump', force_change
-            dt = cutback_factor*dt
-            s%u1 = s%u
-            cycle
-         end if
-         ! the local error of the path (docs/theory.md §8.3): an increment
-         ! where the path turns too fast is redone shorter.  Locking, that of
-         ! the punch force (smooth, the result read at full lock); pulling,
-         ! that of the displacements (the pull force carries a noise of
-         ! stations entering contact and small branch jumps)
-         err = -1.0_dp
-         if (phase == phase_lock) then
-            if (have_force_prev) err = extrapolation_error(force, rec%last_conjugate, prev_conjugate, &
-                                                           dt, dt_prev, eh)
-         else if (have_prev) then
-            err = displacement_error(s%u1, s%u, u_prev, dt, dt_prev, h, dof_scale)
-         end if
-         call judge_error(ctl, err, dt, redo, dt_err, final=phase == phase_lock .and. p + dt >= p1 - 1.0e-12_dp*h)
-         ! a redo shortens the increment by q < 0.8 and a second-order
-         ! estimate by at least as much (by q^2 without an earlier increment):
-         ! one that kept more than half of its value marks a jump of the path
-         ! (the state moving to a neighbouring branch), which no shorter
-         ! increment resolves; it is taken as it is (docs/theory.md §8.3)
-         if (redo .and. err_redone > 0.0_dp) redo = err <= 0.5_dp*err_redone
-         if (redo) then
-            err_redone = err
-            rec%cutbacks = rec%cutbacks + 1
-            write (output_unit, '(a5,1x,a,es10.3,a,es9.2)') phase, 'cutback  d/h=', dt/h, &
-               '  error', err
-            dt = dt_err
-            s%u1 = s%u
-            cycle
-         end if
-         err_redone = -1.0_dp
-         ind_old = s%indicator
-         u_prev = s%u
-         dt_prev = dt
-         call commit_state(m, s, ld%tool_shift)
-         p = p + dt
-         rec%increments = rec%increments + 1
-         pen = 0.0_dp
-         if (m%has_tools) pen = max(0.0_dp, maxval(s%cn(ich_penetration, :, :, :)))/h
-         ! penetrations above 0.05h mean the penalty is too soft for the
-         ! forces at hand (docs/theory.md §5): warn once per run
-         if (pen > 0.05_dp .and. rec%max_penetration <= 0.05_dp) then
-            write (msg, '(a,es9.3,a,es10.3,a)') 'penetration ', pen, 'h > 0.05h at load/h = ', &
-               p/h, ' in '//phase//': raise &tools penalty'
-            call warn(msg, 'run_phase')
-         end if
-         rec%max_penetration = max(rec%max_penetration, pen)
-         call check_fold(m, s, phase, p, ctl%fold_curvature, rec)
-         min_ind = minval(s%indicator)
-         call check_localization(m, s, phase, p, dt, ind_old, nl_old, ell, rec, paper_met)
-         if (paper_met) call write_strains(out, 'strain_localization.dat', m, s, &
+      if (watches_maximum(m, ctl, pr%phase)) call check_load_maximum(m, s, pr%phase, rec)
+   end subroutine check_criteria
+
+   !> WRITE_ROWS: the increment's output: the strain field where the
+   !> paper's criterion was first met (strain_localization.dat), a row of
+   !> lock.dat or pull.dat (columns declared in module output), a strain
+   !> snapshot when due, and summary.txt's progress (last, so that a run
+   !> killed at any moment leaves a true summary beside its files).
+   !>  pr   [in,out] next_snapshot
+   !>  m    [in]     model
+   !>  ctl  [in]     controls
+   !>  s    [in]     the converged state
+   !>  rec  [in]     the record (increments, the split's note)
+   !>  out  [in,out] the run's files
+   subroutine write_rows(pr, m, ctl, s, rec, out)
+      type(phase_run), intent(inout) :: pr
+      type(model_type), intent(in) :: m
+      type(controls_type), intent(in) :: ctl
+      type(state_type), intent(in) :: s
+      type(run_record), intent(in) :: rec
+      type(output_files), intent(inout) :: out
+      real(dp) :: h, eh
+      h = pr%h
+      eh = pr%eh
+      if (pr%paper_met) call write_strains(out, 'strain_localization.dat', m, s, &
                                            'at the increment where the paper''s criterion was met'// &
                                            split_note(rec, h))
-         ! tearing_criterion = 'section': the tearing point is the paper's
-         ! (it has no mesh limit in this model, docs/theory.md §7.1: said once)
-         if (paper_met .and. ctl%tearing_criterion == 'section') then
-            rec%torn = .true.
-            rec%tear_phase = rec%loc_phase
-            rec%tear_load = rec%load_cr
-            rec%tear_s = rec%s_star
-            rec%tear_element = element_length_at(m, rec%s_star)
-            call warn('tearing point by the paper''s pointwise criterion (tearing_criterion = ''section''): '// &
-                      'it has no mesh limit in this model and moves with the mesh (docs/theory.md §7.1)', 'run_phase')
-         end if
-         tool_work = 0.0_dp
-         if (phase == phase_lock) tool_work = 0.5_dp*dt*(rec%last_conjugate + punch)
-         call add_increment_work(ld, r, s%u - u_prev, tool_work, rec)
-         prev_conjugate = rec%last_conjugate
-         have_force_prev = .true.
-         rec%last_conjugate = force
-         if (phase == phase_lock) then
-            rec%lock_force = punch
-            ! a clamped sheet can neck while the bead closes: the maximum of
-            ! its tension (docs/theory.md §7.4)
-            if (watches_maximum(m, ctl, phase)) then
-               call record_lock(rec, p, reaction)
-               call check_load_maximum(m, s, phase, rec)
-            end if
-            call write_row(out, out%lock, [p/h, punch/eh, punch, real(nr%iterations, dp), dt/h, &
-                                      min_ind, pen, reaction/eh, reaction])
-         else
-            rec%peak_force = max(rec%peak_force, reaction)
-            rec%last_lift = lift
-            call record_pull(rec, p, reaction)
-            if (watches_maximum(m, ctl, phase)) call check_load_maximum(m, s, phase, rec)
-            call write_row(out, out%pull, [p/h, reaction/eh, reaction, real(nr%iterations, dp), &
-                                      dt/h, min_ind, lift/eh, lift, pen, punch/eh])
-         end if
-         ! LOCALIZED once the paper's criterion has been met, NONLOCAL once the
-         ! mesh-objective one has
+      if (pr%phase == phase_lock) then
+         call write_row(out, out%lock, [pr%p/h, pr%punch/eh, pr%punch, real(pr%nr%iterations, dp), pr%dt/h, &
+                                        pr%min_ind, pr%pen, pr%reaction/eh, pr%reaction])
+      else
+         call write_row(out, out%pull, [pr%p/h, pr%reaction/eh, pr%reaction, real(pr%nr%iterations, dp), &
+                                        pr%dt/h, pr%min_ind, pr%lift/eh, pr%lift, pr%pen, pr%punch/eh])
+      end if
+      if (snapshot_due(pr, ctl)) then
+         call write_snapshot(out, m, s, pr%phase, pr%p/h, rec%increments)
+         pr%next_snapshot = next_snapshot(pr%p0, pr%p, ctl%snapshot_every_over_h, h)
+      end if
+      call write_progress(out, pr%phase, pr%p/h, rec%increments)
+   end subroutine write_rows
+
+   !> CONSOLE_LINE: the increment's line of the log (LOCALIZED once the
+   !> paper's criterion has been met, NONLOCAL once the averaged-strain one
+   !> has) and, with log_residuals, Newton's residuals, round-off floors
+   !> and the material points' states per iterate (§8.2).
+   !>  pr   [in] the loop's state
+   !>  ctl  [in] controls
+   !>  rec  [in] the record
+   subroutine console_line(pr, ctl, rec)
+      type(phase_run), intent(in) :: pr
+      type(controls_type), intent(in) :: ctl
+      type(run_record), intent(in) :: rec
+      associate (nr => pr%nr)
          write (output_unit, '(a5,i6,a,es11.4,a,es9.2,a,i3,a,es9.2,a,es10.3,a,es11.4,2a)') &
-            phase, rec%increments, '  load/h=', p/h, '  d/h=', dt/h, '  it', nr%iterations, &
-            '  res', nr%residual(nr%iterations), '  loc', min_ind, '  force/Eh=', &
-            force/eh, merge(' LOCALIZED', '          ', rec%localized), &
+            pr%phase, rec%increments, '  load/h=', pr%p/pr%h, '  d/h=', pr%dt/pr%h, '  it', nr%iterations, &
+            '  res', nr%residual(nr%iterations), '  loc', pr%min_ind, '  force/Eh=', &
+            pr%force/pr%eh, merge(' LOCALIZED', '          ', rec%localized), &
             merge(' NONLOCAL', '         ', rec%nl_localized)
          if (ctl%log_residuals) then
             write (output_unit, '(a,*(es9.2))') '      residuals:', nr%residual(0:nr%iterations)
@@ -334,188 +410,72 @@ contains
             write (output_unit, '(a,*(i9))') '      plastic:  ', nr%plastic(0:nr%iterations)
             write (output_unit, '(a,*(i9))') '      switched: ', nr%switched(0:nr%iterations)
          end if
-         ! a strain snapshot at the first converged state at or past each
-         ! multiple of snapshot_every h (one per increment however many it passed)
-         if (ctl%snapshot_every_over_h > 0.0_dp .and. p >= next_snapshot - 1.0e-9_dp*h) then
-            call write_snapshot(out, m, s, phase, p/h, rec%increments)
-            ! (the same slack of 1e-9 h as the test above: a state just short
-            ! of a multiple counts as past it, and the next one is then due)
-            next_snapshot = p0 + (aint((p - p0 + 1.0e-9_dp*h)/(ctl%snapshot_every_over_h*h)) + &
-                                  1.0_dp)*ctl%snapshot_every_over_h*h
-         end if
-         flush (output_unit)
-         call write_progress(out, phase, p/h, rec%increments)
-         ! a result that cannot be written stops the run (nothing computed
-         ! after it could be kept); a stop asked for by SIGTERM or SIGINT
-         ! ends it here, at a converged increment with everything on disk
-         if (out%failed) then
-            rec%status = run_write_failed
-            rec%message = 'cannot write '//out%failure
-            return
-         end if
-         if (stop_requested()) then
-            rec%status = run_interrupted
-            rec%message = 'interrupted by '//signal_name()//' in '//phase// &
-                          ' at a converged increment'
-            return
-         end if
-         ! stop at tearing: with tearing_criterion = 'section' once both the
-         ! paper's and the averaged-strain criteria have been met (the
-         ! paper's decks), with 'load_maximum' once the neck is confirmed
-         if (ctl%stop_at_localization) then
-            if (ctl%tearing_criterion == 'section') then
-               if (rec%localized .and. rec%nl_localized) return
-            else if (rec%torn) then
-               return
-            end if
-         end if
-         ! the neck's refinement once the force turns toward its maximum,
-         ! and again whenever coarse elements are drawn near the exit
-         ! (docs/theory.md §7.6): the split state, re-equilibrated, carries
-         ! on; the phase's arrays follow the new mesh (the predictor's last
-         ! motion is a Hermite field too, carried exactly, and starts from
-         ! the re-equilibrated state)
-         split_due = .false.
-         if (phase == phase_pull .and. m%exit_element > 0.0_dp) then
-            if (rec%split%armed) then
-               split_due = coarse_near_exit(m, s)
-            else
-               rec%split%armed = maximum_approaching(rec%pull_delta(1:rec%n_pull), &
-                                                     rec%pull_force(1:rec%n_pull), h, m%max_load_stress*h)
-               split_due = rec%split%armed
-            end if
-         end if
-         if (split_due) then
-            if (allocated(x_old)) deallocate (x_old)
-            allocate (x_old(m%n_nodes))
-            x_old = m%x
-            ! the last increment's motion, carried to the new mesh below
-            u_prev = s%u - u_prev
-            call refine_at_exit(m, ctl, s, rec, p, pieces, r)
-            if (rec%status /= run_ok) return
-            if (any(pieces > 1)) then
-               u_prev = s%u - split_field(x_old, pieces, u_prev)
-               ! the averaged-strain indicator of the state before the
-               ! split, on the new stations: a crossing by the split's own
-               ! state is found at the next increment
-               nl_old = pack(split_stations(pieces, reshape(nl_old, [1, n_gauss, size(pieces)])), .true.)
-               if (rec%split%count == 1) then
-                  ! the load maximum is looked for on the split mesh's path
-                  rec%max_at = 0
-                  rec%split%pull_first = rec%n_pull + 1
-                  if (allocated(rec%strain_at_max)) deallocate (rec%strain_at_max)
-               else if (rec%max_at > 0 .and. allocated(rec%strain_at_max)) then
-                  ! a later split: the candidate's strains follow the mesh
-                  rec%strain_at_max = pack(split_stations(pieces, &
-                                           reshape(rec%strain_at_max, [1, n_gauss, size(pieces)])), .true.)
-               end if
-               pulled = node_dof(m%n_nodes, dof_v)
-               deallocate (dof_scale)
-               allocate (dof_scale(m%n_dof))
-               dof_scale = phase_dof_scale(m)
-               call band_init(kb, m%n_dof, half_band, half_band, alloc_msg)
-               if (len(alloc_msg) > 0) then
-                  rec%status = run_out_of_memory
-                  rec%message = 'in pull, after the split: '//alloc_msg
-                  return
-               end if
-               rec%reactions = r
-               rec%last_conjugate = r(pulled)
-               force = r(pulled)
-            else
-               u_prev = s%u - u_prev
-            end if
-         end if
-         if (err >= 0.0_dp) then
-            dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations, dt_err)
-         else
-            dt = next_increment(ctl, dt, force_change, target, force, eh, nr%iterations)
-         end if
-         call bound_after_failure(ctl, dt, dt_failed)
-         ! (under the tools: a free strip past its maximum load has one path)
-         if (m%has_tools) call bound_past_section_maximum(ctl, phase, min_ind, h, dt)
-         have_prev = .true.
-      end do
-   end subroutine run_phase
+      end associate
+      flush (output_unit)
+   end subroutine console_line
 
-   !> COARSE_NEAR_EXIT: are elements longer than m%exit_element drawn within
-   !> exit_resplit_before h before the exit of the last radius (or within
-   !> its exit_zone_after h after it)?  Then the neck's zone is split again
-   !> (docs/theory.md §7.6).
-   !>  m  [in]  model
-   !>  s  [in]  converged state
-   logical function coarse_near_exit(m, s)
-      type(model_type), intent(in) :: m
-      type(state_type), intent(in) :: s
-      real(dp) :: x_exit
-      logical :: found
-      call last_radius_exit(m, s, x_exit, found)
-      coarse_near_exit = .false.
-      if (found) coarse_near_exit = any(exit_pieces(m, s, x_exit, exit_resplit_before) > 1)
-   end function coarse_near_exit
-
-   !> WATCHES_MAXIMUM: does the load-maximum criterion (docs/theory.md §7.4)
-   !> watch this phase's force?  The pull's restraining force always with
-   !> that criterion; the lock's tension with tools and a clamped left edge
-   !> (with a free edge the tension is the back tension, a dead load).
-   !>  m      [in]  model
-   !>  ctl    [in]  controls
-   !>  phase  [in]  'lock' or 'pull'
-   pure logical function watches_maximum(m, ctl, phase)
-      type(model_type), intent(in) :: m
+   !> ENDS_RUN: does the phase end at this converged increment?  A result
+   !> that cannot be written stops the run (nothing computed after it could
+   !> be kept); a stop asked for by SIGTERM or SIGINT ends it here, with
+   !> everything on disk; and with stop_at_localization the tearing point
+   !> (stepper's stop_at_tearing).
+   !>  pr    [in]     the loop's state (phase)
+   !>  ctl   [in]     controls
+   !>  out   [in]     the run's files (a failed write)
+   !>  rec   [in,out] status and message of a failed write or a signal
+   !>  ends  [out]    the phase ends
+   subroutine ends_run(pr, ctl, out, rec, ends)
+      type(phase_run), intent(in) :: pr
       type(controls_type), intent(in) :: ctl
-      character(len=*), intent(in) :: phase
-      watches_maximum = ctl%tearing_criterion == 'load_maximum'
-      if (phase == phase_lock) watches_maximum = watches_maximum .and. m%has_tools .and. .not. m%left_edge_free
-   end function watches_maximum
+      type(output_files), intent(in) :: out
+      type(run_record), intent(inout) :: rec
+      logical, intent(out) :: ends
+      ends = .true.
+      if (out%failed) then
+         rec%status = run_write_failed
+         rec%message = 'cannot write '//out%failure
+      else if (stop_requested()) then
+         rec%status = run_interrupted
+         rec%message = 'interrupted by '//signal_name()//' in '//pr%phase//' at a converged increment'
+      else
+         ends = stop_at_tearing(ctl, rec)
+      end if
+   end subroutine ends_run
 
-   !> PHASE_DOF_SCALE: the weight of each dof in the displacement error
-   !> (docs/theory.md §8.3): 1 for v and w (mm), h for the slopes v' and w'.
-   !>  m      [in]  model
-   pure function phase_dof_scale(m) result(dof_scale)
-      type(model_type), intent(in) :: m
-      real(dp) :: dof_scale(m%n_dof)
-      dof_scale = m%thickness
-      dof_scale(node_dof(1, dof_v)::dofs_per_node) = 1.0_dp
-      dof_scale(node_dof(1, dof_w)::dofs_per_node) = 1.0_dp
-   end function phase_dof_scale
-
-   !> REFINE_AT_EXIT: the neck resolved on the default path (docs/theory.md
-   !> §7.6): at a converged state of the pull, the elements around the exit
-   !> of the last radius on the pulled side are split into parts of
-   !> m%exit_element (remesh), the state is mapped onto them and
-   !> re-equilibrated at the same load, and the split is recorded.  Nothing
-   !> is split without a station on a radius or when no element there is
-   !> longer than the parts (pieces all 1 then).
-   !>  m       [in,out] the model; on return the split mesh
-   !>  ctl     [in]     the controls (Newton's limits)
-   !>  s       [in,out] the converged state, on return the mapped state in
-   !>                   equilibrium
-   !>  rec     [in,out] the record: split, counts; status and message when
-   !>                   the mapped state finds no equilibrium
-   !>  p       [in]     the pull, mm
-   !>  pieces  [out]    the parts each old element was split into
-   !>  r       [in,out] reallocated: the residual of the re-equilibrated state (its
-   !>                   reactions at the prescribed dofs), on the new mesh
-   subroutine refine_at_exit(m, ctl, s, rec, p, pieces, r)
+   !> SPLIT_AT_EXIT: the neck resolved on the default path (docs/theory.md
+   !> §7.6), decided by stepper's decide_split: the elements around the
+   !> exit of the last radius on the pulled side are split into parts of
+   !> m%exit_element (remesh's exit_pieces and split_elements), the mapped
+   !> state is re-equilibrated at the same pull (equilibrate_split), and
+   !> the loop's state follows the new mesh: its arrays, the averaged-strain
+   !> indicator of the state before the split on the new stations (a
+   !> crossing by the split's own state is found at the next increment),
+   !> the predictor's last motion (a Hermite field too, carried exactly,
+   !> from the re-equilibrated state), the load-maximum candidate
+   !> (stepper's records_after_split) and the force reached.  Nothing is
+   !> split without a station on a radius or when no element there is
+   !> longer than the parts.
+   !>  pr   [in,out] the loop's state
+   !>  m    [in,out] the model; on return the split mesh
+   !>  ctl  [in]     controls (Newton's limits)
+   !>  s    [in,out] the converged state; on return the mapped state in
+   !>                equilibrium
+   !>  rec  [in,out] the split's record and counts; status and message
+   !>                when out of memory or the mapped state finds no
+   !>                equilibrium
+   subroutine split_at_exit(pr, m, ctl, s, rec)
+      type(phase_run), intent(inout) :: pr
       type(model_type), intent(inout) :: m
       type(controls_type), intent(in) :: ctl
       type(state_type), intent(inout) :: s
       type(run_record), intent(inout) :: rec
-      real(dp), intent(in) :: p
-      integer, allocatable, intent(out) :: pieces(:)
-      real(dp), allocatable, intent(inout) :: r(:)
-      type(load_type) :: ld, ld_step
-      type(band_matrix) :: kb
-      type(newton_result) :: nr
-      real(dp), allocatable :: r0(:), u_mapped(:)
-      real(dp) :: x_exit, h, f_scale, pnewdt, alpha, da, force_change, energy_before(5), energy_after(5), work_dead
+      real(dp), allocatable :: x_old(:), motion(:)
+      integer, allocatable :: pieces(:)
+      real(dp) :: x_exit, energy_before(5), h
       logical :: found
-      integer :: first, last, steps, stat
+      integer :: first, last
       character(len=:), allocatable :: alloc_msg
-      h = m%thickness
-      allocate (pieces(m%n_el))
-      pieces = 1
+      h = pr%h
       call last_radius_exit(m, s, x_exit, found)
       if (.not. found) then
          write (output_unit, '(a)') '# drawbead: refine_exit: no station on a tool radius: the mesh stays as it is'
@@ -525,103 +485,90 @@ contains
       if (all(pieces == 1)) return
       first = findloc(pieces > 1, .true., 1)
       last = findloc(pieces > 1, .true., 1, back=.true.)
-      rec%split%count = rec%split%count + 1
-      if (rec%split%count == 1) then
-         rec%split%phase = phase_pull
-         rec%split%load = p
-         rec%split%x_exit = x_exit
-         rec%split%zone = [m%x(first), m%x(last + 1)]
-         rec%split%elements_before = m%n_el
-      else
-         rec%split%zone = [min(rec%split%zone(1), m%x(first)), max(rec%split%zone(2), m%x(last + 1))]
-      end if
+      call note_split(rec, m%x, pieces, pr%p, x_exit)
       write (output_unit, '(a,f0.4,a,f0.3,a,f0.3,a,f0.3,a,i0,a,i0,a)') '# drawbead: refine_exit: at pull/h = ', &
-         p/h, ' the elements from s/h = ', m%x(first)/h, ' to ', m%x(last + 1)/h, &
-         ' split (exit of the last radius at x/h = ', x_exit/h, '): ', m%n_el, ' -> ', &
-         sum(pieces), ' elements'
+         pr%p/h, ' the elements from s/h = ', m%x(first)/h, ' to ', m%x(last + 1)/h, &
+         ' split (exit of the last radius at x/h = ', x_exit/h, '): ', m%n_el, ' -> ', sum(pieces), ' elements'
       ! the energies the split changes (the stations' densities are
       ! interpolated, and re-equilibration does work against the imbalance
       ! it removes): booked apart, so that the balance still checks the rest
       call energy_totals(m, s, energy_before)
+      x_old = m%x
+      motion = s%u - pr%u_prev
       call split_elements(m, s, pieces, alloc_msg)
       if (len(alloc_msg) > 0) then
          ! (the mesh and the state are those before the split)
          rec%status = run_out_of_memory
          rec%message = 'in pull, splitting the elements at the exit: '//alloc_msg
-         pieces = 1
          return
       end if
       rec%split%elements_after = m%n_el
-      if (allocated(r)) deallocate (r)
-      allocate (u_mapped(m%n_dof), r(m%n_dof), r0(m%n_dof), stat=stat)
-      if (stat /= 0) then
-         rec%status = run_out_of_memory
-         rec%message = 'in pull, after the split: '//alloc_message('the work arrays of '//itoa(m%n_el)// &
-                                                                  ' elements', 24.0_dp*real(m%n_dof, dp))
-         return
-      end if
-      u_mapped = s%u
-      ! the mapped state in equilibrium at the same load: its imbalance r0
-      ! (the mapped stresses are not in equilibrium on the new stations) is
-      ! removed gradually, as a load, f_ext + (1 - alpha) r0 with alpha from
-      ! 0 (the mapped state, in equilibrium by construction) to 1, each
-      ! step committed: mid-pull, with sections past their maximum load on
-      ! the radius, a single Newton solve from the mapped state can leave
-      ! the branch the run was on (bead A steel at 0.59h: diverged)
-      call phase_load(m, phase_pull, p, ld)
-      call band_init(kb, m%n_dof, half_band, half_band, alloc_msg)
+      call phase_run_follow(pr, m, alloc_msg)
       if (len(alloc_msg) > 0) then
          rec%status = run_out_of_memory
          rec%message = 'in pull, after the split: '//alloc_msg
          return
       end if
-      s%u1 = s%u
-      call assemble(m, s, ld, kb, r0, f_scale, pnewdt)
-      rec%assemblies = rec%assemblies + 1
-      r0 = merge(0.0_dp, r0, ld%fixed)
-      ld_step = ld
-      alpha = 0.0_dp
-      da = 1.0_dp
-      steps = 0
-      do while (alpha < 1.0_dp .and. pnewdt >= 1.0_dp)
-         da = min(da, 1.0_dp - alpha)
-         ld_step%f_ext = ld%f_ext + (1.0_dp - (alpha + da))*r0
-         s%u1 = s%u
-         call newton_solve(m, s, ld_step, kb, r, ctl%max_iterations, ctl%tolerance, nr)
-         rec%newton_iterations = rec%newton_iterations + nr%iterations
-         rec%assemblies = rec%assemblies + nr%assemblies
-         if (nr%status == newton_ok) then
-            call commit_state(m, s, ld%tool_shift)
-            alpha = alpha + da
-            steps = steps + 1
-            da = 2.0_dp*da
-         else
-            da = 0.25_dp*da
-            if (da < 1.0_dp/4096.0_dp) exit
-         end if
-      end do
-      if (pnewdt < 1.0_dp) then
+      call phase_load(m, phase_pull, pr%p, pr%ld)
+      call equilibrate_split(pr, m, ctl, s, rec, energy_before)
+      if (rec%status /= run_ok) return
+      pr%u_prev = s%u - split_field(x_old, pieces, motion)
+      pr%nl_old = pack(split_stations(pieces, reshape(pr%nl_old, [1, n_gauss, size(pieces)])), .true.)
+      call records_after_split(rec, pieces)
+      rec%reactions = pr%r
+      rec%last_conjugate = pr%r(pr%pulled)
+      pr%force = pr%r(pr%pulled)
+   end subroutine split_at_exit
+
+   !> EQUILIBRATE_SPLIT: the state mapped onto the split mesh brought into
+   !> equilibrium at the pull's load (remesh's reequilibrate, §7.6, 4), and
+   !> booked: its Newton iterations and assemblies; the dead loads' work
+   !> over it as external work, the rest of the change of the stored,
+   !> dissipated and thickness-stress energies as the split's (kept out of
+   !> the energy balance, §10); the change of the restraining force.
+   !>  pr             [in,out] r: the re-equilibrated state's residual
+   !>                          (its reactions); kb, ld on the new mesh
+   !>  m              [in]     the model on the split mesh
+   !>  ctl            [in]     controls (Newton's limits)
+   !>  s              [in,out] the mapped state, on return in equilibrium
+   !>  rec            [in,out] counts, work, split's energy and force change;
+   !>                          status and message when it fails
+   !>  energy_before  [in]     energy_totals before the split
+   subroutine equilibrate_split(pr, m, ctl, s, rec, energy_before)
+      type(phase_run), intent(inout) :: pr
+      type(model_type), intent(in) :: m
+      type(controls_type), intent(in) :: ctl
+      type(state_type), intent(inout) :: s
+      type(run_record), intent(inout) :: rec
+      real(dp), intent(in) :: energy_before(5)
+      type(reequilibration) :: eq
+      real(dp) :: energy_after(5), force_change
+      call reequilibrate(m, s, pr%ld, pr%kb, pr%r, ctl%max_iterations, ctl%tolerance, eq)
+      rec%newton_iterations = rec%newton_iterations + eq%iterations
+      rec%assemblies = rec%assemblies + eq%assemblies
+      select case (eq%status)
+      case (reeq_out_of_memory)
+         rec%status = run_out_of_memory
+         rec%message = 'in pull, after the split: '//eq%errmsg
+         return
+      case (reeq_material)
          rec%status = run_no_convergence
          rec%message = 'in pull: a material point of the state mapped onto the split mesh cannot be updated:'// &
                        ' set &sheet refine_exit = .false.'
          return
-      else if (alpha < 1.0_dp) then
+      case (reeq_no_equilibrium)
          rec%status = run_no_convergence
          write (rec%message, '(a,f0.4,a)') 'in pull: no equilibrium of the state mapped onto the '// &
-            'split mesh (', alpha, ' of its imbalance removed): set &sheet refine_exit = .false.'
+            'split mesh (', eq%removed, ' of its imbalance removed): set &sheet refine_exit = .false.'
          return
-      end if
-      ! the dead loads' work over the re-equilibration is external work; the
-      ! rest of the change of the stored, dissipated and thickness-stress
-      ! energies is the split's (docs/theory.md §7.6)
-      work_dead = dot_product(ld%f_ext, s%u - u_mapped)
-      rec%work = rec%work + work_dead
+      end select
+      rec%work = rec%work + eq%work_dead
       call energy_totals(m, s, energy_after)
       rec%split%energy_change = rec%split%energy_change + (sum(energy_after(1:4)) - energy_after(5)) &
-                                - (sum(energy_before(1:4)) - energy_before(5)) - work_dead
-      force_change = r(node_dof(m%n_nodes, dof_v))/rec%last_conjugate - 1.0_dp
+                                - (sum(energy_before(1:4)) - energy_before(5)) - eq%work_dead
+      force_change = pr%r(pr%pulled)/rec%last_conjugate - 1.0_dp
       if (rec%split%count == 1) rec%split%force_change = force_change
-      write (output_unit, '(a,i0,a,es9.2,a,f8.5)') '# drawbead: refine_exit: re-equilibrated in ', steps, &
-         ' steps, residual ', nr%residual(nr%iterations), ', restraining force changed by ', force_change
-   end subroutine refine_at_exit
+      write (output_unit, '(a,i0,a,es9.2,a,f8.5)') '# drawbead: refine_exit: re-equilibrated in ', eq%steps, &
+         ' steps, residual ', eq%residual, ', restraining force changed by ', force_change
+   end subroutine equilibrate_split
 end module analysis

@@ -31,5 +31,10 @@ module controls
       character(len=16) :: tearing_criterion = 'load_maximum'  ! the tearing prediction (docs/theory.md §7.4)
       real(dp) :: tearing_length_over_h = 1.0_dp   ! averaging length of the mesh-objective measure
       real(dp) :: fold_curvature = 1.0_dp          ! |rho| h above which the sheet is reported folded
+      ! &sheet refine_neck (docs/theory.md §7.5): a first pass on the
+      ! deck's mesh finds the neck, the run proper has a zone of elements
+      ! of refine_element_over_h h around it
+      logical :: refine_neck = .false.
+      real(dp) :: refine_element_over_h = 0.0_dp
    end type controls_type
 end module controls

@@ -14,7 +14,7 @@ module model
    use text, only: itoa
    implicit none
    private
-   public :: model_type, state_type, load_type, model_init, state_init, load_init, &
+   public :: model_type, state_type, load_type, model_init, model_rezone, state_init, load_init, &
              gauss_position
 
    type :: model_type
@@ -87,28 +87,46 @@ contains
       real(dp), intent(in) :: length, beta, h
       class(material_law_type), intent(in) :: mat
       real(dp), intent(in), optional :: zone(3)
-      integer :: counts(3)
       m%n_el = n_el
-      if (present(zone)) then
-         call zone_counts(n_el, 0.5_dp*length, zone(1), zone(2), zone(3), counts)
-         m%n_el = sum(counts)
-      end if
       m%n_nodes = m%n_el + 1
       m%n_dof = dofs_per_node*m%n_nodes
       m%npt = npt
       m%thickness = h
       m%youngs = mat%youngs
       allocate (m%x(m%n_nodes), m%z(npt), m%wz(npt))
-      if (present(zone)) then
-         call zone_nodes(counts, 0.5_dp*length, zone(1), zone(2), m%x)
-      else
-         call graded_nodes(n_el, 0.5_dp*length, beta, m%x)
-      end if
+      call graded_nodes(n_el, 0.5_dp*length, beta, m%x)
+      if (present(zone)) call model_rezone(m, zone)
       call simpson_rule(npt, h, m%z, m%wz)
       allocate (m%material, source=mat)
       m%n_hist = hist_size(mat)
       m%max_load_strain = max_load_strain(mat, m%max_load_stress)
    end subroutine model_init
+
+   !> MODEL_REZONE: the model's mesh replaced by a mesh with a refined zone
+   !> [s0, s1] of elements of about zone(3) (mesh's zone_counts and
+   !> zone_nodes: outside the zone the element length of the uniform mesh
+   !> of m%n_el elements on the model's [-L, L]).  Only the mesh changes:
+   !> the material, tools, contact and schedule are the model's.  A deck's
+   !> own zone (model_init) and the zone &sheet refine_neck places around
+   !> the first pass's neck (docs/theory.md §7.5) are made so, before any
+   !> state exists on the mesh.
+   !>  m     [in,out] the model on a mesh without a zone (its n_el elements
+   !>                 of the deck); on return on the zoned mesh
+   !>  zone  [in]     [s0, s1, element length in the zone], mm
+   subroutine model_rezone(m, zone)
+      type(model_type), intent(inout) :: m
+      real(dp), intent(in) :: zone(3)
+      integer :: counts(3)
+      real(dp) :: half
+      half = m%x(m%n_nodes)
+      call zone_counts(m%n_el, half, zone(1), zone(2), zone(3), counts)
+      m%n_el = sum(counts)
+      m%n_nodes = m%n_el + 1
+      m%n_dof = dofs_per_node*m%n_nodes
+      deallocate (m%x)
+      allocate (m%x(m%n_nodes))
+      call zone_nodes(counts, half, zone(1), zone(2), m%x)
+   end subroutine model_rezone
 
    !> STATE_INIT: undeformed, stress-free state.
    !>  m       [in]  the model

@@ -21,8 +21,10 @@
 !>    sense, slip and dissipation), with its position and gap set to the
 !>    new station's own, so that no slip is counted for the move, and in
 !>    contact as its gap says (out of contact without a slip history).
-!> The caller re-equilibrates the mapped state at the same load before the
-!> next increment (analysis's refine_at_exit).
+!> The mapped state is then re-equilibrated at the same load before the
+!> next increment (reequilibrate).  The driver decides when and where
+!> (analysis's split_at_exit, stepper's decide_split); the mesh and the
+!> state change here.
 module remesh
    use kinds, only: dp
    use errors, only: alloc_message
@@ -36,11 +38,14 @@ module remesh
                       ich_sense, ich_traction
    use tool_distance, only: tool_gap
    use tools, only: seg_arc
-   use model, only: model_type, state_type
+   use model, only: model_type, state_type, load_type
+   use band, only: band_matrix
+   use solver, only: newton_result, newton_solve, assemble, commit_state, newton_ok
    implicit none
    private
    public :: split_nodes, split_field, station_weights, split_stations, split_elements, exit_pieces, &
-             last_radius_exit
+             last_radius_exit, reequilibrate, reequilibration
+   public :: reeq_ok, reeq_material, reeq_no_equilibrium, reeq_out_of_memory
    public :: exit_element_over_h, exit_zone_before, exit_zone_after, exit_resplit_before
 
    !> The neck's refinement on the default path (docs/theory.md §7.6):
@@ -57,6 +62,25 @@ module remesh
    !> again (over the same window) once one comes within
    !> exit_resplit_before h before it: about every 1.5h of draw
    real(dp), parameter :: exit_resplit_before = 1.5_dp
+
+   !> reequilibration%status: the mapped state is in equilibrium; a material
+   !> point of it could not be updated; its imbalance could not be removed
+   !> whole; its work arrays could not be allocated
+   integer, parameter :: reeq_ok = 0, reeq_material = 1, reeq_no_equilibrium = 2, reeq_out_of_memory = 3
+
+   !> What re-equilibrating a mapped state did (reequilibrate): the
+   !> outcome, the committed steps, the fraction of the imbalance removed,
+   !> Newton's iterations and the assemblies (for the run's counts), the
+   !> last scaled residual, the dead loads' work over it (external work,
+   !> docs/theory.md §7.6) and, when out of memory, the message.
+   type :: reequilibration
+      integer :: status = reeq_ok
+      integer :: steps = 0, iterations = 0, assemblies = 0
+      real(dp) :: removed = 0.0_dp
+      real(dp) :: residual = 0.0_dp
+      real(dp) :: work_dead = 0.0_dp
+      character(len=:), allocatable :: errmsg
+   end type reequilibration
 
 contains
 
@@ -281,6 +305,82 @@ contains
       call move_alloc(gpt, s%gp)
       call move_alloc(ind, s%indicator)
    end subroutine split_elements
+
+   !> REEQUILIBRATE: the state mapped onto a split mesh (split_elements)
+   !> brought into equilibrium at the same load (docs/theory.md §7.6, 4).
+   !> The mapped stresses are not in equilibrium on the new stations: their
+   !> imbalance r0 is removed gradually, as a load f_ext + (1 - alpha) r0
+   !> with alpha from 0 (the mapped state, in equilibrium by construction)
+   !> to 1, each step committed, doubled after a success and quartered
+   !> after a failure: mid-pull, with sections past their maximum load on
+   !> the radius, a single Newton solve from the mapped state can leave
+   !> the branch the run was on (bead A steel at 0.59h: diverged).
+   !>  m         [in]     the model on the split mesh
+   !>  s         [in,out] the mapped state; on return the last committed
+   !>                     step's (in equilibrium when eq%status = reeq_ok)
+   !>  ld        [in]     the load at which it is to be in equilibrium, on
+   !>                     the split mesh
+   !>  kb        [in,out] a band matrix of the split mesh's size (work)
+   !>  r         [in,out] the split mesh's size: the residual of the last
+   !>                     solve (the reactions at the prescribed dofs)
+   !>  max_iter  [in]     Newton's iteration limit
+   !>  tol       [in]     Newton's tolerance
+   !>  eq        [out]    what was done (module type reequilibration)
+   subroutine reequilibrate(m, s, ld, kb, r, max_iter, tol, eq)
+      type(model_type), intent(in) :: m
+      type(state_type), intent(inout) :: s
+      type(load_type), intent(in) :: ld
+      type(band_matrix), intent(inout) :: kb
+      real(dp), intent(inout) :: r(:)
+      integer, intent(in) :: max_iter
+      real(dp), intent(in) :: tol
+      type(reequilibration), intent(out) :: eq
+      type(load_type) :: ld_step
+      type(newton_result) :: nr
+      real(dp), allocatable :: r0(:), u_mapped(:)
+      real(dp) :: f_scale, pnewdt, alpha, da
+      integer :: stat
+      allocate (r0(m%n_dof), u_mapped(m%n_dof), stat=stat)
+      if (stat /= 0) then
+         eq%status = reeq_out_of_memory
+         eq%errmsg = alloc_message('the work arrays of '//itoa(m%n_el)//' elements', 16.0_dp*real(m%n_dof, dp))
+         return
+      end if
+      u_mapped = s%u
+      s%u1 = s%u
+      call assemble(m, s, ld, kb, r0, f_scale, pnewdt)
+      eq%assemblies = 1
+      r0 = merge(0.0_dp, r0, ld%fixed)
+      ld_step = ld
+      alpha = 0.0_dp
+      da = 1.0_dp
+      do while (alpha < 1.0_dp .and. pnewdt >= 1.0_dp)
+         da = min(da, 1.0_dp - alpha)
+         ld_step%f_ext = ld%f_ext + (1.0_dp - (alpha + da))*r0
+         s%u1 = s%u
+         call newton_solve(m, s, ld_step, kb, r, max_iter, tol, nr)
+         eq%iterations = eq%iterations + nr%iterations
+         eq%assemblies = eq%assemblies + nr%assemblies
+         if (nr%status == newton_ok) then
+            call commit_state(m, s, ld%tool_shift)
+            alpha = alpha + da
+            eq%steps = eq%steps + 1
+            da = 2.0_dp*da
+         else
+            da = 0.25_dp*da
+            if (da < 1.0_dp/4096.0_dp) exit
+         end if
+      end do
+      eq%removed = alpha
+      eq%residual = nr%residual(nr%iterations)
+      if (pnewdt < 1.0_dp) then
+         eq%status = reeq_material
+      else if (alpha < 1.0_dp) then
+         eq%status = reeq_no_equilibrium
+      end if
+      ! the dead loads' work over the re-equilibration is external work
+      eq%work_dead = dot_product(ld%f_ext, s%u - u_mapped)
+   end subroutine reequilibrate
 
    !> LAST_RADIUS_EXIT: the current abscissa of the exit of the last radius
    !> on the pulled side: the largest x of a Gauss station in contact with

@@ -36,7 +36,7 @@ module setup
    use mesh, only: dofs_per_node, half_band
    implicit none
    private
-   public :: setup_run, material_constants, material_of_deck
+   public :: setup_run, material_constants, material_of_deck, smallest_radius
 
 contains
 
@@ -74,8 +74,8 @@ contains
       if (errs%count > 0) return
 
       h = d%thickness
-      ! (with refine_neck the zone comes from a first pass: the main program
-      ! sets it in a copy of the deck)
+      ! (with refine_neck the zone comes from a first pass: module passes
+      ! re-meshes the model with it, model's model_rezone)
       if (d%refine_element > 0.0_dp .and. .not. d%refine_neck) then
          call model_init(m, d%n_elements, d%length, d%mesh_beta, h, d%thickness_points, mat, &
                          zone=h*[d%refine_from, d%refine_to, d%refine_element])
@@ -486,6 +486,8 @@ contains
       ctl%tearing_criterion = d%tearing_criterion
       ctl%tearing_length_over_h = d%tearing_length
       ctl%fold_curvature = d%fold_curvature
+      ctl%refine_neck = d%refine_neck
+      ctl%refine_element_over_h = d%refine_element
    end subroutine controls_of_deck
 
    !> READABLE: .true. for a file name given and existing (a missing one is
