@@ -96,6 +96,7 @@ module law_combined
       procedure :: point_update => combined_point_update
       procedure :: update => combined_update
       procedure :: stored_energy => combined_stored_energy
+      procedure :: stores_energy => combined_stores_energy
       procedure :: state_mapped => combined_state_mapped
    end type combined_law_type
 
@@ -1022,6 +1023,12 @@ contains
                                     sum(statev(isv_alpha + 3*(i - 1):isv_alpha + 2 + 3*(i - 1))**2)
       end do
    end function combined_stored_energy
+
+   !> COMBINED_STORES_ENERGY: .true. with a back stress of C > 0.
+   pure logical function combined_stores_energy(law)
+      class(combined_law_type), intent(in) :: law
+      combined_stores_energy = any(law%c(1:law%n_back) > 0.0_dp)
+   end function combined_stores_energy
 
    !> The elastic energy density of the three normal stresses.
    pure function elastic_energy(s, e, nu) result(w)

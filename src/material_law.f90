@@ -57,6 +57,7 @@ module material_law
       procedure :: update_to => law_update_to
       procedure :: state_mapped => law_state_mapped
       procedure :: stored_energy => law_stored_energy
+      procedure :: stores_energy => law_stores_energy
    end type material_law_type
 
    abstract interface
@@ -150,6 +151,17 @@ contains
       end associate
       w = 0.0_dp
    end function law_stored_energy
+
+   !> LAW_STORES_ENERGY: .true. when the law's state can store energy
+   !> (stored_energy not identically 0): summary.txt then reports it.  This
+   !> default: .false.
+   !>  law  [in]  the law
+   pure logical function law_stores_energy(law)
+      class(material_law_type), intent(in) :: law
+      associate (unused => law)
+      end associate
+      law_stores_energy = .false.
+   end function law_stores_energy
 
    !> MAX_LOAD_STRAIN: the axial log strain at maximum load in plane-strain
    !> uniaxial tension (width strain held, tau22 = 0), where the continuum

@@ -190,10 +190,14 @@ contains
       call put(text, 'energy_external_work', rec%work, .true.)
       call put(text, 'energy_elastic', energy(1), .true.)
       call put(text, 'energy_plastic', energy(2), .true.)
-      ! of it stored by the back stresses (kinematic hardening), the rest dissipated
-      stored = 0.0_dp
-      if (allocated(s%hn)) stored = stored_plastic_energy(m, s)
-      call put(text, 'energy_plastic_stored', stored, .true.)
+      ! of it stored by the back stresses (kinematic hardening), the rest
+      ! dissipated; only for a law that can store energy (the summaries of
+      ! the others keep their keys)
+      if (m%material%stores_energy()) then
+         stored = 0.0_dp
+         if (allocated(s%hn)) stored = stored_plastic_energy(m, s)
+         call put(text, 'energy_plastic_stored', stored, .true.)
+      end if
       call put(text, 'energy_penalty', energy(3), .true.)
       call put(text, 'energy_friction', energy(4), .true.)
       call put(text, 'energy_normal_stress', energy(5), .true.)
