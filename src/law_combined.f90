@@ -38,16 +38,16 @@
 !> dissipated.
 !>
 !> State variables (own, before normal_law's): 1 the equivalent plastic
-!> strain p, 2 sigma_y(p) (a cache: an elastic increment evaluates no
-!> hardening law; 0 = not known, computed on entry), then alpha_i (3 normal
-!> components each), i = 1 .. n_back.
+!> strain p, 2 sigma_y(p) and 3 its slope H'(p) (caches: an elastic
+!> increment evaluates no hardening law, and the section's return starts
+!> from them; sigma_y = 0 = not known, both computed on entry), then
+!> alpha_i (3 normal components each), i = 1 .. n_back.
 !>
-!> The section's update (normal_law's drive of the thickness strain) is
-!> preceded by an elastic predictor for the whole block: with isotropic
-!> elasticity the thickness strain of an elastic increment is known,
-!> d eps22 = (d tau22 - lambda d eps11)/(lambda + 2 mu) (width held), and a
-!> point whose trial state lies inside the yield surface is done with it;
-!> only the points that yield are driven.
+!> The section's update (update => combined_update) does not drive the
+!> thickness strain around point_update (normal_law's way, kept for the
+!> law's other callers and as the tests' reference): an elastic predictor
+!> for the whole block, then the points that yield returned together with
+!> tau22 prescribed, directly (mixed_return_block, docs/theory.md §13.7).
 module law_combined
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
