@@ -51,7 +51,7 @@
 module law_combined
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use kinds, only: dp
-   use normal_law, only: normal_law_type, set_normal_layout, drive_block_point
+   use normal_law, only: normal_law_type, set_normal_layout
    use hardening, only: flow_stress, flow_stress_block, plastic_work, ip_youngs, ip_poisson
    use deck, only: deck_type, is_unset, max_kinematic
    use deck_checks, only: check_real, check_choice, fail, at
@@ -410,7 +410,8 @@ contains
             statev(k, law%isv_eps22) = statev(k, law%isv_eps22) + xe(k)
             ! the tangents with tau22 held: plane-stress elasticity
             statev(k, law%isv_tangent) = e_ps
-            sse(k) = elastic_energy(te(k, :), e, nu)
+            sse(k) = (te(k, 1)**2 + te(k, 2)**2 + te(k, 3)**2 &
+                      - 2.0_dp*nu*(te(k, 1)*te(k, 2) + te(k, 2)*te(k, 3) + te(k, 1)*te(k, 3)))/(2.0_dp*e)
             ddsdde(k, 1, 1) = e_ps
             ddsdde(k, 1, 2) = nu*e_ps
             ddsdde(k, 2, 1) = nu*e_ps
@@ -455,8 +456,8 @@ contains
       real(dp), intent(inout), optional :: dsig_ds22(n)
       real(dp) :: tr0(np, 3), pp(np), ep(np), syn(np), hpn(np), aa(np, 2, max_back_stresses), &
                   dpv(np), xv(np), nv(np, 3), syv(np), hpv(np), tau(np, 2), dd(np, 2, 2), &
-                  cpl(np), tng(np), lam, l2m, a, w, an(3), al(3), dep(3)
-      integer :: k, i, j, idx(np)
+                  cpl(np), tng(np), w(np), lam, l2m, a, ci, an, al
+      integer :: k, i, j, c, ic, idx(np)
       logical :: ok
       lam = law%lam
       l2m = law%d(1, 1)
@@ -472,10 +473,15 @@ contains
          ep(j) = statev(k, isv_p)
          syn(j) = statev(k, isv_flow)
          hpn(j) = statev(k, isv_slope)
-         do i = 1, law%n_back
-            an = statev(k, isv_alpha + 3*(i - 1):isv_alpha + 2 + 3*(i - 1))
-            aa(j, 1, i) = dot_product(law%eig_vec(:, 1), an)
-            aa(j, 2, i) = dot_product(law%eig_vec(:, 2), an)
+      end do
+      do i = 1, law%n_back
+         ic = isv_alpha + 3*(i - 1)
+         do j = 1, np
+            k = idx(j)
+            aa(j, 1, i) = law%eig_vec(1, 1)*statev(k, ic) + law%eig_vec(2, 1)*statev(k, ic + 1) &
+                          + law%eig_vec(3, 1)*statev(k, ic + 2)
+            aa(j, 2, i) = law%eig_vec(1, 2)*statev(k, ic) + law%eig_vec(2, 2)*statev(k, ic + 1) &
+                          + law%eig_vec(3, 2)*statev(k, ic + 2)
          end do
       end do
       call mixed_return_block(law, np, tr0, pp, ep, syn, hpn, aa, dpv, xv, nv, syv, hpv, tau, dd, &
@@ -485,17 +491,27 @@ contains
          return
       end if
       do j = 1, np
-         k = idx(j)
-         dep = dpv(j)*nv(j, :)
-         w = plastic_work(ep(j) + dpv(j), syv(j), law%props, size(law%props)) &
-             - plastic_work(ep(j), syn(j), law%props, size(law%props))
-         do i = 1, law%n_back
-            an = statev(k, isv_alpha + 3*(i - 1):isv_alpha + 2 + 3*(i - 1))
-            a = 1.0_dp/(1.0_dp + law%gamma(i)*dpv(j))
-            al = a*(an + (2.0_dp/3.0_dp)*law%c(i)*dep)
-            w = w + 0.5_dp*dot_product(an + al, dep)
-            statev(k, isv_alpha + 3*(i - 1):isv_alpha + 2 + 3*(i - 1)) = al
+         w(j) = plastic_work(ep(j) + dpv(j), syv(j), law%props, size(law%props)) &
+                - plastic_work(ep(j), syn(j), law%props, size(law%props))
+      end do
+      ! the back stresses, alpha_i = a_i (alpha_i,n + 2/3 C_i dp n), and
+      ! their share of the plastic work, sum (alpha_n + alpha)/2 . dp n
+      do i = 1, law%n_back
+         ci = (2.0_dp/3.0_dp)*law%c(i)
+         do c = 1, 3
+            ic = isv_alpha + c - 1 + 3*(i - 1)
+            do j = 1, np
+               k = idx(j)
+               a = 1.0_dp/(1.0_dp + law%gamma(i)*dpv(j))
+               an = statev(k, ic)
+               al = a*(an + ci*dpv(j)*nv(j, c))
+               w(j) = w(j) + 0.5_dp*(an + al)*dpv(j)*nv(j, c)
+               statev(k, ic) = al
+            end do
          end do
+      end do
+      do j = 1, np
+         k = idx(j)
          stress(k, 1) = tau(j, 1)
          stress(k, 2) = tau(j, 2)
          statev(k, isv_p) = ep(j) + dpv(j)
@@ -503,7 +519,7 @@ contains
          statev(k, isv_slope) = hpv(j)
          statev(k, law%isv_eps22) = statev(k, law%isv_eps22) + xv(j)
          statev(k, law%isv_tangent) = tng(j)
-         spd(k) = spd(k) + w
+         spd(k) = spd(k) + w(j)
          sse(k) = elastic_energy([tau(j, 1), pp(j), tau(j, 2)], law%youngs, law%poisson)
          ddsdde(k, :, :) = dd(j, :, :)
          if (present(dsig_ds22)) dsig_ds22(k) = cpl(j)
@@ -663,15 +679,25 @@ contains
       do i = 1, law%n_back
          ci = (2.0_dp/3.0_dp)*law%c(i)
          gi = law%gamma(i)
-         do j = 1, np
-            a = 1.0_dp/(1.0_dp + gi*dpv(j))
-            b(j) = b(j) + ci*dpv(j)*a
-            bd(j) = bd(j) + ci*a*a
-            c0(j, 1) = c0(j, 1) - a*aa(j, 1, i)
-            c0(j, 2) = c0(j, 2) - a*aa(j, 2, i)
-            dc0(j, 1) = dc0(j, 1) + gi*a*a*aa(j, 1, i)
-            dc0(j, 2) = dc0(j, 2) + gi*a*a*aa(j, 2, i)
-         end do
+         if (gi > 0.0_dp) then
+            do j = 1, np
+               a = 1.0_dp/(1.0_dp + gi*dpv(j))
+               b(j) = b(j) + ci*dpv(j)*a
+               bd(j) = bd(j) + ci*a*a
+               c0(j, 1) = c0(j, 1) - a*aa(j, 1, i)
+               c0(j, 2) = c0(j, 2) - a*aa(j, 2, i)
+               dc0(j, 1) = dc0(j, 1) + gi*a*a*aa(j, 1, i)
+               dc0(j, 2) = dc0(j, 2) + gi*a*a*aa(j, 2, i)
+            end do
+         else
+            ! Prager: a = 1
+            do j = 1, np
+               b(j) = b(j) + ci*dpv(j)
+               bd(j) = bd(j) + ci
+               c0(j, 1) = c0(j, 1) - aa(j, 1, i)
+               c0(j, 2) = c0(j, 2) - aa(j, 2, i)
+            end do
+         end if
       end do
       do j = 1, np
          theta(j) = (2.0_dp*mu*dpv(j) + b(j))/syv(j)
@@ -731,7 +757,7 @@ contains
       real(dp), intent(in) :: phi(np), dphi(np), syv(np), hpv(np), kap(np), dpv(np)
       real(dp), intent(inout) :: lo(np), hi(np)
       real(dp), intent(out) :: step(np), n_far, n_out
-      real(dp) :: far, near, f, fd, s, l, h, den
+      real(dp) :: far, near, f, fd, s, l, h, den, rs
       logical :: inside
       integer :: j
       n_far = 0.0_dp
@@ -742,9 +768,10 @@ contains
          h = merge(hi(j), dpv(j), phi(j) > 0.0_dp)
          lo(j) = l
          hi(j) = h
-         den = 1.0_dp + kap(j)*dpv(j)/syv(j)
+         rs = 1.0_dp/syv(j)
+         den = 1.0_dp + kap(j)*dpv(j)*rs
          f = phi(j)*den
-         fd = dphi(j)*den + phi(j)*kap(j)*(syv(j) - dpv(j)*hpv(j))/syv(j)**2
+         fd = dphi(j)*den + phi(j)*kap(j)*(1.0_dp - dpv(j)*hpv(j)*rs)*rs
          s = dpv(j) - f/merge(fd, -1.0_dp, fd < 0.0_dp)
          inside = fd < 0.0_dp .and. s > l .and. s < h
          s = merge(s, merge(0.5_dp*(l + h), max(2.0_dp*l, 1.0e-8_dp), h < huge(1.0_dp)), inside)
