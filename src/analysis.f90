@@ -485,7 +485,6 @@ contains
       if (all(pieces == 1)) return
       first = findloc(pieces > 1, .true., 1)
       last = findloc(pieces > 1, .true., 1, back=.true.)
-      call note_split(rec, m%x, pieces, pr%p, x_exit)
       write (output_unit, '(a,f0.4,a,f0.3,a,f0.3,a,f0.3,a,i0,a,i0,a)') '# drawbead: refine_exit: at pull/h = ', &
          pr%p/h, ' the elements from s/h = ', m%x(first)/h, ' to ', m%x(last + 1)/h, &
          ' split (exit of the last radius at x/h = ', x_exit/h, '): ', m%n_el, ' -> ', sum(pieces), ' elements'
@@ -502,6 +501,8 @@ contains
          rec%message = 'in pull, splitting the elements at the exit: '//alloc_msg
          return
       end if
+      ! recorded once done: a split that failed (out of memory) is not one
+      call note_split(rec, x_old, pieces, pr%p, x_exit)
       rec%split%elements_after = m%n_el
       call phase_run_follow(pr, m, alloc_msg)
       if (len(alloc_msg) > 0) then
