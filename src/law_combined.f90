@@ -370,15 +370,18 @@ contains
          te(k, 1) = stress(k, 1) + l2m*dstran(k, 1) + lam*(xe(k) + dstran(k, 2))
          te(k, 2) = pv(k)
          te(k, 3) = stress(k, 2) + l2m*dstran(k, 2) + lam*(xe(k) + dstran(k, 1))
-         xie(k, :) = te(k, :)
       end do
-      do i = 1, law%n_back
-         do k = 1, n
-            xie(k, 1) = xie(k, 1) - statev(k, isv_alpha + 3*(i - 1))
-            xie(k, 2) = xie(k, 2) - statev(k, isv_alpha + 1 + 3*(i - 1))
-            xie(k, 3) = xie(k, 3) - statev(k, isv_alpha + 2 + 3*(i - 1))
+      ! xi = the trial less the back stresses (without any: the trial)
+      if (law%n_back > 0) then
+         xie = te
+         do i = 1, law%n_back
+            do k = 1, n
+               xie(k, 1) = xie(k, 1) - statev(k, isv_alpha + 3*(i - 1))
+               xie(k, 2) = xie(k, 2) - statev(k, isv_alpha + 1 + 3*(i - 1))
+               xie(k, 3) = xie(k, 3) - statev(k, isv_alpha + 2 + 3*(i - 1))
+            end do
          end do
-      end do
+      end if
       ! the flow stress cache, filled where not known (a virgin or a
       ! remeshed point)
       do k = 1, n
@@ -389,10 +392,12 @@ contains
          end if
       end do
       n_bad = 0.0_dp
+      if (law%n_back > 0) then
+         call hill_square(law%p, n, xie, q2)
+      else
+         call hill_square(law%p, n, te, q2)
+      end if
       do k = 1, n
-         q2(k) = law%p(1, 1)*xie(k, 1)**2 + law%p(2, 2)*xie(k, 2)**2 + law%p(3, 3)*xie(k, 3)**2 &
-                 + 2.0_dp*(law%p(1, 2)*xie(k, 1)*xie(k, 2) + law%p(1, 3)*xie(k, 1)*xie(k, 3) &
-                           + law%p(2, 3)*xie(k, 2)*xie(k, 3))
          sy = statev(k, isv_flow)
          n_bad = n_bad + merge(0.0_dp, 1.0_dp, sy > 0.0_dp .and. abs(te(k, 1)) <= huge(1.0_dp) &
                                .and. abs(te(k, 3)) <= huge(1.0_dp) .and. abs(pv(k)) <= huge(1.0_dp))
@@ -456,11 +461,12 @@ contains
       real(dp), intent(inout), optional :: dsig_ds22(n)
       real(dp) :: tr0(np, 3), pp(np), ep(np), syn(np), hpn(np), aa(np, 2, max_back_stresses), &
                   dpv(np), xv(np), nv(np, 3), syv(np), hpv(np), tau(np, 2), dd(np, 2, 2), &
-                  cpl(np), tng(np), w(np), lam, l2m, a, ci, an, al
+                  cpl(np), tng(np), w(np), lam, l2m, a, ci, an, al, half_compliance
       integer :: k, i, j, c, ic, idx(np)
       logical :: ok
       lam = law%lam
       l2m = law%d(1, 1)
+      half_compliance = 0.5_dp/law%youngs
       j = 0
       do k = 1, n
          if (elastic(k)) cycle
@@ -520,7 +526,8 @@ contains
          statev(k, law%isv_eps22) = statev(k, law%isv_eps22) + xv(j)
          statev(k, law%isv_tangent) = tng(j)
          spd(k) = spd(k) + w(j)
-         sse(k) = elastic_energy([tau(j, 1), pp(j), tau(j, 2)], law%youngs, law%poisson)
+         sse(k) = (tau(j, 1)**2 + pp(j)**2 + tau(j, 2)**2 - 2.0_dp*law%poisson &
+                   *(tau(j, 1)*pp(j) + pp(j)*tau(j, 2) + tau(j, 1)*tau(j, 2)))*half_compliance
          ddsdde(k, :, :) = dd(j, :, :)
          if (present(dsig_ds22)) dsig_ds22(k) = cpl(j)
       end do
@@ -597,7 +604,8 @@ contains
       do iter = 1, max_return_iter
          call mixed_eval(law, np, t, tr0(:, 2), pp, aa, dpv, syv, hpv, xv, xi, g, dc0, theta, &
                          dtheta, beta, dbeta, phi, dphi)
-         if (.not. all(ieee_is_finite(phi) .and. ieee_is_finite(dphi))) return
+         ! (finite: |x| <= huge, false for NaN; one vector loop, no calls)
+         if (.not. all(abs(phi) <= huge(1.0_dp) .and. abs(dphi) <= huge(1.0_dp))) return
          if (iter == 1) then
             ! sbar's decay rate at dp = 0 (mixed_step)
             do j = 1, np
@@ -618,7 +626,7 @@ contains
             end do
             call mixed_eval(law, np, t, tr0(:, 2), pp, aa, dpv, syv, hpv, xv, xi, g, dc0, theta, &
                             dtheta, beta, dbeta, phi, dphi)
-            ok = all(ieee_is_finite(phi))
+            ok = all(abs(phi) <= huge(1.0_dp))
             exit
          end if
          do j = 1, np
@@ -633,7 +641,8 @@ contains
       if (.not. ok) return
       call mixed_results(law, np, tr0, aa, dpv, xv, xi, g, dc0, syv, hpv, dtheta, beta, dbeta, &
                          nv, tau, dd, cpl, tng)
-      ok = all(ieee_is_finite(tau)) .and. all(ieee_is_finite(dd)) .and. all(ieee_is_finite(tng))
+      ok = all(abs(tau) <= huge(1.0_dp)) .and. all(abs(dd) <= huge(1.0_dp)) .and. &
+           all(abs(tng) <= huge(1.0_dp))
    end subroutine mixed_return_block
 
    !> MIXED_EVAL: the state of mixed_return_block's points at given dp
@@ -658,7 +667,8 @@ contains
       real(dp), intent(out) :: xv(np), xi(np, 2), g(np, 2), dc0(np, 2), theta(np), dtheta(np), &
                                beta(np), dbeta(np), phi(np), dphi(np)
       real(dp) :: b(np), bd(np), c0(np, 2), a, ci, gi, mu, l2m, l1, l2, e1, e2, d1, d2, g1, g2, &
-                  dg1, dg2, s1, s2, ds1, ds2, num, dnum, dnm, ddnm, dx, r1, r2, dxi1, dxi2, q
+                  dg1, dg2, s1, s2, ds1, ds2, num, dnum, dnm, ddnm, dx, r1, r2, dxi1, dxi2, q, rs, &
+                  u1, u2, rr
       integer :: i, j
       mu = law%mu
       l2m = law%d(1, 1)
@@ -700,12 +710,18 @@ contains
          end if
       end do
       do j = 1, np
-         theta(j) = (2.0_dp*mu*dpv(j) + b(j))/syv(j)
-         dtheta(j) = (2.0_dp*mu + bd(j) - theta(j)*hpv(j))/syv(j)
-         beta(j) = 2.0_dp*mu*dpv(j)/syv(j)
-         dbeta(j) = (2.0_dp*mu - beta(j)*hpv(j))/syv(j)
-         g1 = 1.0_dp/(1.0_dp + theta(j)*l1)
-         g2 = 1.0_dp/(1.0_dp + theta(j)*l2)
+         ! (four divisions per point and pass: 1/sigma_y, g1 and g2 from
+         ! one, 1/dnm, 1/q)
+         rs = 1.0_dp/syv(j)
+         theta(j) = (2.0_dp*mu*dpv(j) + b(j))*rs
+         dtheta(j) = (2.0_dp*mu + bd(j) - theta(j)*hpv(j))*rs
+         beta(j) = 2.0_dp*mu*dpv(j)*rs
+         dbeta(j) = (2.0_dp*mu - beta(j)*hpv(j))*rs
+         u1 = 1.0_dp + theta(j)*l1
+         u2 = 1.0_dp + theta(j)*l2
+         rr = 1.0_dp/(u1*u2)
+         g1 = u2*rr
+         g2 = u1*rr
          dg1 = -g1*g1*l1*dtheta(j)
          dg2 = -g2*g2*l2*dtheta(j)
          g(j, 1) = g1
@@ -719,8 +735,9 @@ contains
          dnum = dbeta(j)*s1 + beta(j)*ds1
          dnm = l2m - beta(j)*s2
          ddnm = -(dbeta(j)*s2 + beta(j)*ds2)
-         xv(j) = num/dnm
-         dx = (dnum - xv(j)*ddnm)/dnm
+         rr = 1.0_dp/dnm
+         xv(j) = num*rr
+         dx = (dnum - xv(j)*ddnm)*rr
          r1 = c0(j, 1) + xv(j)*d1
          r2 = c0(j, 2) + xv(j)*d2
          xi(j, 1) = g1*r1
@@ -889,6 +906,23 @@ contains
          cpl(j) = dt1(j, 3)
       end do
    end subroutine mixed_results
+
+   !> HILL_SQUARE: Hill's sbar^2 = x^T P x of n stress vectors.
+   !>  p   [in]  (3, 3) Hill's matrix
+   !>  n   [in]  number of vectors
+   !>  x   [in]  (n, 3) the vectors (axial, thickness, width)
+   !>  q2  [out] (n) sbar^2
+   pure subroutine hill_square(p, n, x, q2)
+      real(dp), intent(in) :: p(3, 3)
+      integer, intent(in) :: n
+      real(dp), intent(in) :: x(n, 3)
+      real(dp), intent(out) :: q2(n)
+      integer :: k
+      do k = 1, n
+         q2(k) = p(1, 1)*x(k, 1)**2 + p(2, 2)*x(k, 2)**2 + p(3, 3)*x(k, 3)**2 &
+                 + 2.0_dp*(p(1, 2)*x(k, 1)*x(k, 2) + p(1, 3)*x(k, 1)*x(k, 3) + p(2, 3)*x(k, 2)*x(k, 3))
+      end do
+   end subroutine hill_square
 
    !> COMBINED_STATE_MAPPED: the cached flow stress belongs to the old
    !> points' plastic strains: marked unknown (law_j2's reason).
