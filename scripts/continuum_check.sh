@@ -18,6 +18,9 @@
 #   --max-inc T       largest time increment (default 0.02)
 #   --min-inc T       smallest time increment (default 1e-7)
 #   --output-every T  a row of results every T of time (default --max-inc)
+#   --contact-slope K the contact's pressure-overclosure slope, MPa/mm
+#                     (default 1e5; the friction's stick slope is K/10): 1e4
+#                     gets the stepped bead (tight closed tools) through
 #   --bin PATH        the program to run (default bin/drawbead, built first)
 #   --no-plot         no pictures
 #   -h, --help        this help
@@ -64,7 +67,7 @@ while (($# > 0)); do
             model_opts+=("$1" "$2")
             shift 2
             ;;
-        --initial-inc | --max-inc | --min-inc | --output-every)
+        --initial-inc | --max-inc | --min-inc | --output-every | --contact-slope)
             need_value 'a number' "$@"
             [[ $2 =~ ^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$ ]] || die "$1 needs a positive number, not '$2'"
             model_opts+=("$1" "$2")

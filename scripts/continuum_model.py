@@ -4,6 +4,7 @@
 Usage:
     continuum_model.py RUN_LOG OUT_DIR [--through N] [--per-h M]
                        [--initial-inc T] [--max-inc T] [--min-inc T]
+                       [--output-every T] [--contact-slope K]
 
 RUN_LOG   the standard output of bin/drawbead on the deck: its "resolved input"
           namelist echo (every variable, defaults filled in, checked by the
@@ -21,6 +22,15 @@ Options:
     --min-inc T      smallest time increment (default 1e-7)
     --output-every T results every T of time (rounded to divide 1; default
                      --max-inc): CalculiX prints at these time points only
+    --contact-slope K  the slope of the linear pressure-overclosure law, MPa/mm
+                     (default 1e5); the friction's stick slope is K/10.
+                     CalculiX pairs each sheet node with one tool facet and
+                     re-pairs it in each of the first iterations of an
+                     increment; the force of a node paired anew changes by
+                     up to K x (the change of its overclosure) x (the facet's
+                     area), and on tight, closed tools (the stepped bead) the
+                     default slope makes that jump too large for Newton
+                     (docs/continuum-check.md, "Contact stiffness")
 
 The model (docs/continuum-check.md): the sheet is a rectangle [-L, L] x
 [-h/2, h/2] of CPE8R elements, thickness 1 mm (forces per mm width). The
@@ -47,9 +57,9 @@ import re
 import sys
 
 # contact and tool-strip constants (docs/continuum-check.md, "The model")
-CONTACT_SLOPE = 1.0e5      # MPa/mm, linear pressure-overclosure slope
+CONTACT_SLOPE = 1.0e5      # MPa/mm, linear pressure-overclosure slope (default of --contact-slope)
 CONTACT_TENSION = 0.1      # MPa, sigma_inf of the node-to-surface law
-STICK_SLOPE = 1.0e4        # MPa/mm, the friction law's stick slope
+STICK_RATIO = 0.1          # the friction law's stick slope / the contact slope (1e4 MPa/mm by default)
 FIELD_FORCE = 20.0         # N, fixed reference force of the field check
 TOOL_E = 2.0e7             # MPa, the strips (every node prescribed anyway)
 
@@ -452,8 +462,10 @@ def write_lines(f, items, per_line=8):
         f.write(', '.join(str(x) for x in items[i:i + per_line]) + '\n')
 
 
-def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
-    """Write OUT_DIR/continuum.inp and continuum_model.json for the case."""
+def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope=CONTACT_SLOPE):
+    """Write OUT_DIR/continuum.inp and continuum_model.json for the case;
+    slope: the contact's pressure-overclosure slope, MPa/mm (the stick slope
+    is STICK_RATIO times it)."""
     deck = nml.get('_deck', '?')
     sheet, mat, tools, load = nml['sheet'], nml['material'], nml['tools'], nml['loading']
     sheet_material, kinematic_c = material_cards(deck, mat)
@@ -604,9 +616,9 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
                     f.write('%d, S1\n' % e)
             f.write('*SURFACE INTERACTION, NAME=SI\n')
             f.write('*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n%.6g, %.6g\n'
-                    % (CONTACT_SLOPE, CONTACT_TENSION))
+                    % (slope, CONTACT_TENSION))
             if mu > 0:
-                f.write('*FRICTION\n%.12g, %.6g\n' % (mu, STICK_SLOPE))
+                f.write('*FRICTION\n%.12g, %.6g\n' % (mu, STICK_RATIO * slope))
             f.write('*CONTACT PAIR, INTERACTION=SI, TYPE=NODE TO SURFACE\nSTOP, MUPPER\n')
             f.write('*CONTACT PAIR, INTERACTION=SI, TYPE=NODE TO SURFACE\nSBOT, MLOWER\n')
         # the edges (docs/theory.md section 1): the centreline point held at
@@ -669,6 +681,7 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every):
         'lock_depth': lock, 'pull_distance': pull, 'left_edge_free': left_free,
         'back_tension': back, 'friction': mu, 'bead': bead, 'nx': nx, 'ny': ny,
         'through': through, 'per_h': per_h, 'has_tools': bool(tool_nodes),
+        'contact_slope': slope,
         'node_x': {str(n): x for n, x, _ in nodes if n in set(mid) | set(top) | set(bot)},
         'node_y': {str(n): y for n, _, y in nodes if n in set(mid) | set(top) | set(bot)},
         'mid': mid, 'top': top, 'bottom': bot, 'n_sheet_elements': n_sheet_elems,
@@ -698,7 +711,8 @@ def bead_half_width(tools, bead, h):
 def main(argv):
     """Command line: see the module header."""
     args, opts = [], {'--through': 4, '--per-h': 4, '--initial-inc': 0.01,
-                      '--max-inc': 0.02, '--min-inc': 1e-7, '--output-every': 0.0}
+                      '--max-inc': 0.02, '--min-inc': 1e-7, '--output-every': 0.0,
+                      '--contact-slope': CONTACT_SLOPE}
     i = 0
     while i < len(argv):
         a = argv[i]
@@ -722,6 +736,8 @@ def main(argv):
         fail('--through needs an even number >= 2 (the mid-surface is a row of nodes)')
     if opts['--per-h'] < 1:
         fail('--per-h needs a positive integer')
+    if not opts['--contact-slope'] > 0 or math.isinf(opts['--contact-slope']):
+        fail('--contact-slope needs a positive number of MPa/mm, not %r' % opts['--contact-slope'])
     try:
         with open(args[0]) as f:
             nml = parse_resolved(f.read())
@@ -731,7 +747,8 @@ def main(argv):
         fail('%s holds no resolved input (did the program accept the deck?)' % args[0])
     os.makedirs(args[1], exist_ok=True)
     build(nml, args[1], opts['--through'], opts['--per-h'], opts['--initial-inc'],
-          opts['--max-inc'], opts['--min-inc'], opts['--output-every'] or opts['--max-inc'])
+          opts['--max-inc'], opts['--min-inc'], opts['--output-every'] or opts['--max-inc'],
+          opts['--contact-slope'])
     return 0
 
 

@@ -315,7 +315,9 @@ def convert(ccx_dir, out_dir, program=None):
              ('increments', str(len(sta))),
              ('newton_iterations', str(sum(i for _, i in sta))),
              ('mesh', '%d x %d CPE8R (%d per h along, %d through the thickness)'
-              % (info['nx'], info['ny'], info['per_h'], info['through']))]
+              % (info['nx'], info['ny'], info['per_h'], info['through'])
+              + ('' if info.get('contact_slope', 1e5) == 1e5 else
+                 '; contact slope %.6g MPa/mm' % info['contact_slope']))]
     text = summary_text(out_dir, info, 'continuum (CalculiX): %s' % info.get('title', ''), extra,
                         valid_until=t_bad)
     with open(os.path.join(out_dir, 'continuum_summary.txt'), 'w') as f:

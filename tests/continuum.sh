@@ -27,6 +27,8 @@
 #     continuum is a sheet lying in the tools: the flat sheet is, the
 #     sheet raised by 3h or stretched by 3 is not, and compare says so and
 #     leaves the numbers out; b) is a sheet in the tools.
+#  e) (no ccx needed) --contact-slope reaches the model's contact and
+#     friction cards (default 1e5 and 1e4 MPa/mm unchanged); 0 is refused.
 # a) and b) are skipped (ok) when ccx is not installed. Exit 0 if all
 # pass, 1 otherwise.
 set -u
@@ -59,6 +61,38 @@ then
     echo "ok   a deck's lock_depth (3 mm, short of full lock) is the model's rise, locking and pulling"
 else
     echo "FAIL a deck's lock_depth (3 mm) is not the continuum model's rise of the lower tool"
+    fail=1
+fi
+
+# e) the contact's slope (--contact-slope, issue 28 item 12: the stepped
+# bead's continuum stopped in the pull with the default 1e5 MPa/mm and goes
+# through with 1e4): the default deck keeps 1e5 and the stick slope 1e4; the
+# option sets both (stick = K/10) and is named in the model; 0 is refused
+if python3 scripts/continuum_model.py "$work/short/program/run.log" "$work/slope" --contact-slope 1e4 \
+    >/dev/null 2>&1 && python3 - "$work/short/ccx" "$work/slope" <<'PY'
+import json, sys
+def cards(d):
+    inp = open(d + '/continuum.inp').read().split('\n')
+    return (inp[inp.index('*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR') + 1],
+            inp[inp.index('*FRICTION') + 1], json.load(open(d + '/continuum_model.json'))['contact_slope'])
+ok = (cards(sys.argv[1]) == ('100000, 0.1', '0.1, 10000', 1e5)
+      and cards(sys.argv[2]) == ('10000, 0.1', '0.1, 1000', 1e4))
+sys.exit(0 if ok else 1)
+PY
+then
+    echo "ok   --contact-slope 1e4 gives the contact slope 1e4 and the stick slope 1e3 MPa/mm (default 1e5, 1e4)"
+else
+    echo "FAIL --contact-slope does not reach the continuum model's contact and friction cards"
+    fail=1
+fi
+if python3 scripts/continuum_model.py "$work/short/program/run.log" "$work/slope0" --contact-slope 0 \
+    >/dev/null 2>"$work/slope0.err"; then
+    echo "FAIL --contact-slope 0 accepted"
+    fail=1
+elif grep -q 'contact-slope needs a positive number' "$work/slope0.err"; then
+    echo "ok   --contact-slope 0 refused"
+else
+    echo "FAIL --contact-slope 0: $(cat "$work/slope0.err")"
     fail=1
 fi
 
