@@ -542,6 +542,25 @@ def gen_ccx_combined_element(ctx):
 
 
 
+# the lift traced tool by tool: the decks and the program variants compared
+LIFT_TRACE_DECKS = ["cc_fig5a_beadA_steel", "cc_fig6_beadB_steel"]
+LIFT_TRACE_OPTIONS = ["--offset", "0.05", "--also", "normal_stress=none", "--also", "n_elements=320"]
+
+
+def gen_lift_trace(ctx):
+    """docs/validation.md: scripts/lift_trace.sh on the clamped steel beads A
+    and B against the continuum runs kept in
+    docs/validation/continuum/<deck>/lift_trace/ (no CalculiX run), verbatim."""
+    parts = []
+    for deck in LIFT_TRACE_DECKS:
+        kept = f"docs/validation/continuum/{deck}/lift_trace"
+        args = ["scripts/lift_trace.sh", f"input/{deck}.nml", "--ccx", kept] + LIFT_TRACE_OPTIONS
+        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, "lift", deck),
+                                             "--bin", ctx.program] + args[1:])
+        parts.append("$ " + " ".join(args) + "\n" + out)
+    text = "```\n" + "\n\n".join(parts) + "\n```"
+    return lambda raw: text
+
 # ---------------------------------------------------------------------------
 # What the laws change (docs/validation.md): the clamped and free beads A and
 # B with the published material sets and a pressure-dependent friction
@@ -767,6 +786,8 @@ GENERATORS = {
                    "scripts/sweep.sh over lock_depth on fig9c and scripts/bead_curves.sh on it"),
     "ccx_combined_element": ("docs/continuum-check.md", gen_ccx_combined_element,
                              "tests/ccx_combined_element.sh: CalculiX's combined hardening in one element"),
+    "lift_trace": ("docs/validation.md", gen_lift_trace,
+                   "scripts/lift_trace.sh on cc_fig5a and cc_fig6 against their kept continuum runs"),
     "laws_table": ("docs/validation.md", gen_laws_table,
                    "the cc_ beads A and B, clamped and free, and fig9d, with published hardening sets and mu(p)"),
     "laws_bead_curves": ("docs/validation.md", gen_laws_bead_curves,
