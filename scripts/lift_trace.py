@@ -627,7 +627,9 @@ def cmd_trace(args):
     return 0
 
 
-def cmd_summary(args):
+def split_at(args):
+    """The --at D1,D2,... option (default 0.5h and 1h) and the positional
+    arguments of a subcommand."""
     at, pos = [0.5, 1.0], []
     i = 0
     while i < len(args):
@@ -637,6 +639,11 @@ def cmd_summary(args):
         else:
             pos.append(args[i])
             i += 1
+    return at, pos
+
+
+def cmd_summary(args):
+    at, pos = split_at(args)
     if len(pos) != 3:
         fail('usage: lift_trace.py summary LABEL PROGRAM_DIR CCX_DIR [--at D1,D2,...]')
     label, prog_dir, ccx_dir = pos
@@ -671,15 +678,7 @@ def cmd_summary(args):
 
 
 def cmd_trim_ccx(args):
-    at, pos = [0.5, 1.0], []
-    i = 0
-    while i < len(args):
-        if args[i] == '--at' and i + 1 < len(args):
-            at = [float(v) for v in args[i + 1].split(',') if v.strip()]
-            i += 2
-        else:
-            pos.append(args[i])
-            i += 1
+    at, pos = split_at(args)
     if len(pos) != 2:
         fail('usage: lift_trace.py trim-ccx CCX_DIR OUT_DIR [--at D1,D2,...]')
     src, dst = pos
