@@ -17,8 +17,9 @@
 !>   tau = s + p,  d eps22 = d eps22(plane stress, s) + (1 - 2 nu) dp/E.
 !> The plastic work s : d eps^p equals tau : d eps^p (the flow is
 !> incompressible); the elastic energy is that of the three stresses.  The
-!> shift holds only for a law without a back stress: law_combined drives
-!> the thickness strain instead (module normal_law).
+!> shift holds only for a law without a back stress: law_combined solves
+!> the increment with tau22 prescribed directly (docs/theory.md §13.7), a
+!> user's UMAT is driven (module normal_law).
 module law_j2
    use kinds, only: dp
    use material_law, only: material_law_type
