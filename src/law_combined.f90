@@ -210,7 +210,7 @@ contains
          stress = tr
          ddsdde = law%k%d
          cont = law%k%d
-         sse = elastic_energy(stress, e, nu)
+         sse = elastic_energy(stress(1), stress(2), stress(3), e, nu)
          return
       end if
       call return_map(law%k, tr, alpha_n, p_n, mu, dp_inc, n, q, sy, hp, ok)
@@ -234,7 +234,7 @@ contains
       statev(isv_slope) = hp
       stress = sig
       spd = spd + w
-      sse = elastic_energy(stress, e, nu)
+      sse = elastic_energy(stress(1), stress(2), stress(3), e, nu)
       call tangents(law%k, n, q, dp_inc, hp, alpha_n, alpha, ddsdde, cont)
    end subroutine combined_point_update
 
@@ -328,8 +328,7 @@ contains
             statev(k, law%isv_eps22) = statev(k, law%isv_eps22) + xe(k)
             ! the tangents with tau22 held: plane-stress elasticity
             statev(k, law%isv_tangent) = e_ps
-            sse(k) = (te(k, 1)**2 + te(k, 2)**2 + te(k, 3)**2 &
-                      - 2.0_dp*nu*(te(k, 1)*te(k, 2) + te(k, 2)*te(k, 3) + te(k, 1)*te(k, 3)))/(2.0_dp*e)
+            sse(k) = elastic_energy(te(k, 1), te(k, 2), te(k, 3), e, nu)
             ddsdde(k, 1, 1) = e_ps
             ddsdde(k, 1, 2) = nu*e_ps
             ddsdde(k, 2, 1) = nu*e_ps
@@ -374,12 +373,11 @@ contains
       real(dp), intent(inout), optional :: dsig_ds22(n)
       real(dp) :: tr0(np, 3), pp(np), ep(np), syn(np), hpn(np), aa(np, 2, max_back_stresses), &
                   dpv(np), xv(np), nv(np, 3), syv(np), hpv(np), tau(np, 2), dd(np, 2, 2), &
-                  cpl(np), tng(np), w(np), lam, l2m, a, ci, an, al, half_compliance
+                  cpl(np), tng(np), w(np), lam, l2m, a, ci, an, al
       integer :: k, i, j, c, ic, idx(np)
       logical :: ok
       lam = law%k%lam
       l2m = law%k%d(1, 1)
-      half_compliance = 0.5_dp/law%youngs
       j = 0
       do k = 1, n
          if (elastic(k)) cycle
@@ -439,8 +437,7 @@ contains
          statev(k, law%isv_eps22) = statev(k, law%isv_eps22) + xv(j)
          statev(k, law%isv_tangent) = tng(j)
          spd(k) = spd(k) + w(j)
-         sse(k) = (tau(j, 1)**2 + pp(j)**2 + tau(j, 2)**2 - 2.0_dp*law%poisson &
-                   *(tau(j, 1)*pp(j) + pp(j)*tau(j, 2) + tau(j, 1)*tau(j, 2)))*half_compliance
+         sse(k) = elastic_energy(tau(j, 1), pp(j), tau(j, 2), law%youngs, law%poisson)
          ddsdde(k, :, :) = dd(j, :, :)
          if (present(dsig_ds22)) dsig_ds22(k) = cpl(j)
       end do
@@ -475,11 +472,12 @@ contains
       combined_stores_energy = any(law%k%c(1:law%k%n_back) > 0.0_dp)
    end function combined_stores_energy
 
-   !> The elastic energy density of the three normal stresses.
-   pure function elastic_energy(s, e, nu) result(w)
-      real(dp), intent(in) :: s(3), e, nu
+   !> The elastic energy density of the three normal stresses (elemental on
+   !> scalars: the block loops call it without array temporaries).
+   elemental function elastic_energy(s1, s2, s3, e, nu) result(w)
+      real(dp), intent(in) :: s1, s2, s3, e, nu
       real(dp) :: w
-      w = (s(1)**2 + s(2)**2 + s(3)**2 - 2.0_dp*nu*(s(1)*s(2) + s(2)*s(3) + s(1)*s(3)))/(2.0_dp*e)
+      w = (s1**2 + s2**2 + s3**2 - 2.0_dp*nu*(s1*s2 + s2*s3 + s1*s3))/(2.0_dp*e)
    end function elastic_energy
 
 end module law_combined
