@@ -30,7 +30,7 @@ module stepper
    private
    public :: phase_run, phase_run_init, phase_run_follow, predict, read_forces, record_increment, &
              watches_maximum, stop_at_tearing, decide_split, note_split, records_after_split, &
-             snapshot_due, next_snapshot, failure_tag, size_next_increment, phase_dof_scale
+             snapshot_due, next_snapshot, failure_tag, size_next_increment
 
    !> What a phase's increment loop carries between increments (the locals
    !> of the loop; lengths in mm).
