@@ -19,7 +19,8 @@ module tearing
    public :: check_localization, check_fold, strain_limit_indicator, first_crossing
    public :: check_load_maximum, tear_at_snap_back, track_load_maximum, neck_confirmed, &
              load_at_maximum, parabola_vertex
-   public :: tear_force_drop, neck_strain_rate, tear_confirm_pull, set_torn, element_length_at
+   public :: tear_force_drop, neck_strain_rate, tear_confirm_pull, neck_stretch_fraction, station_lengths, &
+             set_torn, element_length_at
    public :: maximum_approaching, approach_slope_ratio
 
    !> A maximum of the restraining force is a neck once the force has fallen
@@ -36,6 +37,16 @@ module tearing
    !> thousandths of h and recovering (bead A mu 0, contact section);
    !> a neck's fall lasts 0.1h or more (the continuum's: 0.2h to fall 1%)
    real(dp), parameter :: tear_confirm_pull = 0.05_dp
+   !> ... and, in the pull, at least neck_stretch_fraction of the pull since
+   !> the maximum has gone into stretching the sheet (the sum over the
+   !> stations of their log strain growth times their reference length):
+   !> a neck stops the draw-in and takes the pull (0.69-0.80 on the
+   !> clamped and the double bead's necks at their confirmation), while a
+   !> sheet drawing steadily through the bead takes most of the pull as
+   !> inflow, stretching by about its exit strain eps/(1 + eps) of it
+   !> (0.25 and 0.34 on the stepped and round beads' dips, which the
+   !> continuum draws through without a neck; docs/theory.md §7.4)
+   real(dp), parameter :: neck_stretch_fraction = 0.5_dp
    !> The restraining force approaches a neck's maximum once its slope over
    !> the last approach_window h of pull has fallen to approach_slope_ratio
    !> of its slope over [0.05h, 0.15h] while the force is at least
@@ -123,14 +134,14 @@ contains
       if (phase == phase_lock) then
          if (rec%n_lock == 0) return
          call track_load_maximum(rec%lock_lift(1:rec%n_lock), rec%lock_tension(1:rec%n_lock), &
-                                 pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), m%thickness, &
-                                 rec%localized, rec%max_at, rec%strain_at_max, load, k)
+                                 pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), station_lengths(m), &
+                                 .false., m%thickness, rec%localized, rec%max_at, rec%strain_at_max, load, k)
       else
          associate (k0 => rec%split%pull_first)
             if (rec%n_pull < k0) return
             call track_load_maximum(rec%pull_delta(k0:rec%n_pull), rec%pull_force(k0:rec%n_pull), &
-                                    pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), m%thickness, &
-                                    rec%localized, rec%max_at, rec%strain_at_max, load, k)
+                                    pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), station_lengths(m), &
+                                    .true., m%thickness, rec%localized, rec%max_at, rec%strain_at_max, load, k)
          end associate
       end if
       if (k > 0) call set_torn(m, rec, phase, load, k)
@@ -233,6 +244,10 @@ contains
    !>  delta, force   [in]     the pull history up to the current state
    !>                          (the current state last)
    !>  strain         [in]     log strain per station in the current state
+   !>  ds             [in]     reference length per station, mm (station_lengths)
+   !>  pulled         [in]     the load is the pull of the sheet's end: the
+   !>                          stretch test applies (not while locking,
+   !>                          whose load is the lift)
    !>  h              [in]     thickness (unit of the pull in the rate)
    !>  section_lost   [in]     the section tangent has lost positive
    !>                          definiteness at some station (paper's (3.1))
@@ -240,15 +255,16 @@ contains
    !>  strain_at_max  [in,out] strain per station at the candidate
    !>  tear_load      [out]    the interpolated maximum when torn, else 0
    !>  k              [out]    the neck's station when torn, else 0
-   pure subroutine track_load_maximum(delta, force, strain, h, section_lost, max_at, strain_at_max, &
+   pure subroutine track_load_maximum(delta, force, strain, ds, pulled, h, section_lost, max_at, strain_at_max, &
                                       tear_load, k)
-      real(dp), intent(in) :: delta(:), force(:), strain(:), h
-      logical, intent(in) :: section_lost
+      real(dp), intent(in) :: delta(:), force(:), strain(:), ds(:), h
+      logical, intent(in) :: pulled, section_lost
       integer, intent(inout) :: max_at
       real(dp), allocatable, intent(inout) :: strain_at_max(:)
       real(dp), intent(out) :: tear_load
       integer, intent(out) :: k
       real(dp), allocatable :: growth(:)
+      real(dp) :: stretched
       integer :: n, j
       n = size(force)
       k = 0
@@ -273,8 +289,11 @@ contains
       end do
       if (delta(n) - delta(j) < tear_confirm_pull*h) return
       growth = strain - strain_at_max
+      ! the share of the pull since the maximum taken up as stretch
+      stretched = 1.0_dp
+      if (pulled) stretched = sum(max(growth, 0.0_dp)*ds)/max(delta(n) - delta(max_at), tiny(1.0_dp))
       if (neck_confirmed(force(max_at), force(n), (delta(n) - delta(max_at))/h, growth, &
-                         section_lost)) then
+                         section_lost, stretched)) then
          k = first_near_max(growth)
          tear_load = load_at_maximum(delta, force, max_at, h)
       end if
@@ -285,21 +304,25 @@ contains
    !> either the log strain of one station has grown by at least
    !> neck_strain_rate per h of pull since the maximum (the strain
    !> concentrates) or the section has lost positive definiteness somewhere
-   !> (a station can localize; in uniform tension the whole sheet can)
-   !> (docs/theory.md §7.4).
+   !> (a station can localize; in uniform tension the whole sheet can), and
+   !> the sheet has taken at least neck_stretch_fraction of the pull as
+   !> stretch, not as draw-in (docs/theory.md §7.4).
    !>  f_max        [in]  the force at the maximum
    !>  f            [in]  the force now
    !>  pull_over_h  [in]  the pull since the maximum, in units of h
    !>  growth       [in]  the growth of each station's log strain since then
    !>  section_lost [in]  the paper's criterion (3.1) has been met
-   pure function neck_confirmed(f_max, f, pull_over_h, growth, section_lost) result(yes)
-      real(dp), intent(in) :: f_max, f, pull_over_h, growth(:)
+   !>  stretched    [in]  the share of the pull since the maximum that
+   !>                     stretched the sheet (1 while locking)
+   pure function neck_confirmed(f_max, f, pull_over_h, growth, section_lost, stretched) result(yes)
+      real(dp), intent(in) :: f_max, f, pull_over_h, growth(:), stretched
       logical, intent(in) :: section_lost
       logical :: yes
       logical :: concentrated
       yes = .false.
       if (size(growth) == 0 .or. .not. f_max > 0.0_dp) return
       if (f > (1.0_dp - tear_force_drop)*f_max) return
+      if (stretched < neck_stretch_fraction) return
       concentrated = maxval(growth) > 0.0_dp .and. &
                      maxval(growth) >= neck_strain_rate*max(pull_over_h, 0.0_dp)
       yes = concentrated .or. section_lost
@@ -443,6 +466,19 @@ contains
       vmax = maxval(v)
       k = maxloc(merge(1, 0, v >= vmax - 1.0e-9_dp*abs(vmax)), 1)
    end function first_near_max
+
+   !> STATION_LENGTHS: the reference length each Gauss station stands for,
+   !> its element's length times its weight, in the flat list of stations
+   !> (k = (e - 1) n_gauss + ig); they sum to the sheet's length.
+   !>  m  [in] model
+   pure function station_lengths(m) result(ds)
+      type(model_type), intent(in) :: m
+      real(dp) :: ds(n_gauss*m%n_el)
+      integer :: e
+      do e = 1, m%n_el
+         ds((e - 1)*n_gauss + 1:e*n_gauss) = (m%x(e + 1) - m%x(e))*gauss_wt
+      end do
+   end function station_lengths
 
    !> STATION_POSITION: reference abscissa of station k of the flat list
    !> of Gauss stations, element by element (k = (e - 1) n_gauss + ig).
