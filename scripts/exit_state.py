@@ -7,6 +7,7 @@ Usage:
     exit_state.py station PROGRAM_DIR
     exit_state.py patch-inp CONTINUUM_INP MODEL_JSON S_OVER_H [--band B]
     exit_state.py extract CCX_DIR OUT_FILE S_OVER_H [--band B]
+    exit_state.py summary LABEL PROGRAM_DIR CONTINUUM_FILE
     exit_state.py compare PROGRAM_DIR CONTINUUM_FILE [--check]
                           [--tol-thickness T] [--tol-eqps E] [--tol-middle M]
 
@@ -44,6 +45,10 @@ compare    the program's exit_state.dat (PROGRAM_DIR) against OUT_FILE,
            off 1 by more than T (default 0.02), an eqps ratio at a face by
            more than E (default 0.10) or at the middle by more than M
            (default E).
+summary    one line LABEL: the thickness and the eqps at the faces and the
+           middle, program / continuum, as compare reads them (for the
+           variants of exit_state_check.sh --also and --offset; the
+           continuum at each variant's own station).
 
 Exit status 0; 1 a --check failed; 2 a missing or unreadable file, or a
 station outside the continuum's kept band.
@@ -277,6 +282,29 @@ def interp(xs, ys, x):
     return ys[-1]
 
 
+def summary(label, run_dir, cont_file):
+    """Print one line: thickness and eqps (faces, middle), program /
+    continuum, at the program's station."""
+    head, rows = read_exit_state(run_dir)
+    zs, cols, thick, _ = read_continuum(cont_file)
+    s = head['s']
+    cs = [c[0] for c in cols]
+    prof = [interp(cs, [c[1][r] for c in cols], s) for r in range(len(zs))]
+    lt = interp([v[0] for v in thick], [v[2] for v in thick], s)
+    if lt is None or None in prof:
+        fail('the program\'s station s/h = %g lies outside the continuum\'s band' % s)
+    n = len(zs)
+    cont = [math.exp(lt), prof[0] + (prof[1] - prof[0]) * (-0.5 - zs[0]) / (zs[1] - zs[0]),
+            0.5 * (prof[n // 2 - 1] + prof[n // 2]),
+            prof[-1] + (prof[-1] - prof[-2]) * (0.5 - zs[-1]) / (zs[-1] - zs[-2])]
+    pz = [r[0] for r in rows]
+    prog = [head['thickness'], rows[0][3], interp(pz, [r[3] for r in rows], 0.0), rows[-1][3]]
+    parts = ['%s %.4f / %.4f = %.3f' % (name, p, c, p / c) for name, p, c in
+             zip(('thickness', 'eqps bottom', 'middle', 'top'), prog, cont)]
+    print('%s (station s/h = %.2f, passed the whole bead: %s): %s (program / continuum)'
+          % (label, s, head.get('passed', '?'), '; '.join(parts)))
+
+
 def compare(run_dir, cont_file, check, tol_t, tol_e, tol_m):
     """Print the table; return the exit status."""
     head, rows = read_exit_state(run_dir)
@@ -380,6 +408,9 @@ def main(argv):
             return 0
         if cmd == 'extract' and len(rest) == 3:
             extract(rest[0], rest[1], float(rest[2]), band)
+            return 0
+        if cmd == 'summary' and len(rest) == 3:
+            summary(rest[0], rest[1], rest[2])
             return 0
         if cmd == 'compare' and len(rest) == 2:
             return compare(rest[0], rest[1], check, tol_t, tol_e, tol_m)

@@ -26,6 +26,13 @@
 #                     it in docs/validation/continuum/<deck>/exit_state.txt
 #   --band B          the continuum's band kept about the program's
 #                     station, in h (default 4)
+#   --also VAR=VALUE  also run the program with the deck variable VAR set
+#                     to VALUE (repeatable: e.g. normal_stress=none,
+#                     n_elements=424) and compare it with the same
+#                     continuum, at its own station (a line each)
+#   --offset D        also run the program with both tools' centreline
+#                     chains moved by D h toward the tools
+#                     (scripts/lift_trace.sh --offset; repeatable)
 #   --check           exit status 1 when the thickness is off the
 #                     continuum's by more than 2% or an equivalent plastic
 #                     strain (faces, middle) by more than 10%
@@ -40,7 +47,9 @@
 # continuum: continuum.inp with the band's integration-point coordinates
 # printed, CalculiX's continuum.dat, tens of MB, and ccx.log),
 # continuum_exit_state.txt (the continuum's exit state, as --keep writes
-# it) and exit_state_comparison.txt (the table, also printed). CalculiX
+# it), program_also_K/ and program_offset_K/ (the runs of --also and
+# --offset) and exit_state_comparison.txt (the table and a line per run,
+# also printed). CalculiX
 # runs on OMP_NUM_THREADS threads (default 1) and takes tens of minutes
 # for a pull through the whole bead.
 #
@@ -61,6 +70,8 @@ bin_opt=''
 band=4
 check=()
 model_opts=()
+also=()
+offsets=()
 split_options "$@"
 set -- "${split_args[@]}"
 while (($# > 0)); do
@@ -93,6 +104,18 @@ while (($# > 0)); do
             need_value 'a number' "$@"
             [[ $2 =~ ^[0-9]*\.?[0-9]+$ ]] || die "--band needs a positive number, not '$2'"
             band=$2
+            shift 2
+            ;;
+        --also)
+            need_value 'VAR=VALUE' "$@"
+            [[ $2 =~ ^[a-z_][a-z0-9_]*=[^,]+$ ]] || die "--also needs one VAR=VALUE, not '$2'"
+            also+=("$2")
+            shift 2
+            ;;
+        --offset)
+            need_value 'a number' "$@"
+            [[ $2 =~ ^[0-9]*\.?[0-9]+$ ]] || die "--offset needs a positive number, not '$2'"
+            offsets+=("$2")
             shift 2
             ;;
         --check)
@@ -189,6 +212,43 @@ python3 "$root/scripts/exit_state.py" compare "$dir/program" "$cont_file" "${che
     >"$dir/exit_state_comparison.txt"
 cmp_rc=$?
 ((cmp_rc <= 1)) || die "cannot compare the exit states"
+
+# 4. the variants (of the deck as given): a line each, at their own stations
+if ((${#also[@]} + ${#offsets[@]} > 0)); then
+    {
+        echo ''
+        echo '# variants of the program against the same continuum'
+        python3 "$root/scripts/exit_state.py" summary "the deck as it is" "$dir/program" "$cont_file"
+    } >>"$dir/exit_state_comparison.txt" || die "cannot compare the deck as it is"
+    "$bin" --list-variables >"$dir/variables.txt" || die "cannot list the program's variables"
+fi
+k=0
+for spec in "${also[@]}"; do
+    k=$((k + 1))
+    rm -rf "$dir/sweep"
+    python3 "$root/scripts/sweep_tool.py" decks "$dir/sweep" "$dir/variables.txt" "$deck" \
+        "$spec" >/dev/null || die "cannot write the deck with $spec"
+    mv "$dir/sweep/decks/case_0000.nml" "$dir/deck_also_$k.nml" && rm -rf "$dir/sweep"
+    note "running the program with $spec into $dir/program_also_$k"
+    run_deck "$bin" "$dir/deck_also_$k.nml" "$dir/program_also_$k"
+    rc=$?
+    ((rc == exit_ok)) || die "the program exited with status $rc with $spec"
+    python3 "$root/scripts/exit_state.py" summary "$spec" "$dir/program_also_$k" "$cont_file" \
+        >>"$dir/exit_state_comparison.txt" || die "cannot compare the exit state with $spec"
+done
+k=0
+for off in "${offsets[@]}"; do
+    k=$((k + 1))
+    python3 "$root/scripts/lift_trace.py" offset-deck "$dir/program/run.log" "$dir/variables.txt" \
+        "$deck" "$dir/deck_offset_$k.nml" "$off" || die "cannot offset the tools by $off h"
+    note "running the program with the tools offset by $off h into $dir/program_offset_$k"
+    run_deck "$bin" "$dir/deck_offset_$k.nml" "$dir/program_offset_$k"
+    rc=$?
+    ((rc == exit_ok)) || die "the program exited with status $rc with the tools offset by $off h"
+    python3 "$root/scripts/exit_state.py" summary "tools offset by ${off}h" "$dir/program_offset_$k" \
+        "$cont_file" >>"$dir/exit_state_comparison.txt" || die "cannot compare the exit state with the offset $off"
+done
+rm -f "$dir/variables.txt"
 cat "$dir/exit_state_comparison.txt"
 ((ccx_rc == 0 && cmp_rc == 0)) || exit 1
 exit 0
