@@ -77,8 +77,8 @@ def read_dat(path):
             lines = f.read().splitlines()
     except OSError as e:
         fail('cannot read %s: %s' % (path, e))
-    head = re.compile(r'^\s*(total force|displacements|equivalent plastic strain).*?'
-                      r'for set (\S+) and time\s+(\S+)')
+    head = re.compile(r'^\s*(total force|displacements|equivalent plastic strain|'
+                      r'global coordinates|forces).*?for set (\S+) and time\s+(\S+)')
     i, n = 0, len(lines)
     while i < n:
         m = head.match(lines[i])
@@ -98,7 +98,7 @@ def read_dat(path):
             blk['RF:' + name] = (float(rows[0][0]), float(rows[0][1]))
         elif kind == 'displacements':
             blk['U'] = {int(r[0]): (float(r[1]), float(r[2])) for r in rows}
-        else:
+        elif kind == 'equivalent plastic strain':
             pe = blk.setdefault('PEEQ', {})
             for r in rows:
                 e = int(r[0])

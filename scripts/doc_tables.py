@@ -563,6 +563,27 @@ def gen_lift_trace(ctx):
     text = "```\n" + "\n\n".join(parts) + "\n```"
     return lambda raw: text
 
+# the sheet leaving the bead against the continuum: the decks (their kept
+# continuum exit states in docs/validation/continuum/<deck>/exit_state.txt)
+EXIT_STATE_DECKS = ["exit_fig9c_beadA_steel_free"]
+EXIT_STATE_OPTIONS = ["--also", "n_elements=424", "--also", "normal_stress=none", "--offset", "0.05"]
+
+
+def gen_exit_state(ctx):
+    """docs/validation.md: scripts/exit_state_check.sh on the free-edge
+    exit-state decks against the continuum's exit states kept in
+    docs/validation/continuum/<deck>/exit_state.txt (no CalculiX run),
+    verbatim."""
+    parts = []
+    for deck in EXIT_STATE_DECKS:
+        kept = f"docs/validation/continuum/{deck}/exit_state.txt"
+        args = ["scripts/exit_state_check.sh", f"input/{deck}.nml", "--continuum", kept] + EXIT_STATE_OPTIONS
+        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, "exit_state", deck),
+                                             "--bin", ctx.program] + args[1:])
+        parts.append("$ " + " ".join(args) + "\n" + out)
+    text = "```\n" + "\n\n".join(parts) + "\n```"
+    return lambda raw: text
+
 # ---------------------------------------------------------------------------
 # What the laws change (docs/validation.md): the clamped and free beads A and
 # B with the published material sets and a pressure-dependent friction
@@ -790,6 +811,8 @@ GENERATORS = {
                              "tests/ccx_combined_element.sh: CalculiX's combined hardening in one element"),
     "lift_trace": ("docs/validation.md", gen_lift_trace,
                    "scripts/lift_trace.sh on cc_fig5a and cc_fig6 against their kept continuum runs"),
+    "exit_state": ("docs/validation.md", gen_exit_state,
+                   "scripts/exit_state_check.sh on the free-edge exit-state decks against their kept continuum exit states"),
     "laws_table": ("docs/validation.md", gen_laws_table,
                    "the cc_ beads A and B, clamped and free, and fig9d, with published hardening sets and mu(p)"),
     "laws_bead_curves": ("docs/validation.md", gen_laws_bead_curves,
