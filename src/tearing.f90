@@ -152,7 +152,9 @@ contains
    !> positive definiteness somewhere (the paper's criterion met), is the
    !> snap-back of a forming neck: no equilibrium is near under the
    !> prescribed load (docs/theory.md §7.4); while locking, only once the
-   !> tension has fallen tear_force_drop below its maximum.  The tearing
+   !> tension has fallen tear_force_drop below its maximum; while pulling,
+   !> only once the sheet has taken neck_stretch_fraction of the pull since
+   !> the maximum as stretch (7.6), as in the confirmation.  The tearing
    !> point is then the maximum, at the station whose strain grew most
    !> since it.
    !>  m, s   [in]     model and the last converged state
@@ -181,6 +183,11 @@ contains
       ! only once the tension has fallen clearly below its maximum
       if (phase == phase_lock .and. forces(size(forces)) > (1.0_dp - tear_force_drop)*forces(rec%max_at)) return
       growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
+      ! in the pull, a sheet still drawing in is not necking (7.6)
+      if (phase == phase_pull) then
+         if (sum(max(growth, 0.0_dp)*station_lengths(m)) &
+             < neck_stretch_fraction*(loads(size(loads)) - loads(rec%max_at))) return
+      end if
       call set_torn(m, rec, phase, load_at_maximum(loads, forces, rec%max_at, m%thickness), &
                     first_near_max(growth))
       torn = .true.
