@@ -130,25 +130,30 @@ def patch_inp(inp, model_json, s_over_h, band):
     open(inp, 'w').write(text)
 
 
-def read_coord(path):
-    """The integration points' coordinates of the last output time in a
-    .dat file: (time, {(elem, ip): (x, y)})."""
+def read_ip_blocks(path, kind, ncol):
+    """The integration-point blocks of one kind in a .dat file ('global
+    coordinates', 'equivalent plastic strain'): {time: {(elem, ip): the
+    NCOL values after the two indices}}."""
     head = re.compile(r'^\s*(\S.*?)\s*\(.*for set (\S+) and time\s+(\S+)')
     blocks = {}
-    kind = None
+    cur = None
     with open(path) as f:
         for line in f:
             m = head.match(line)
             if m:
-                kind = m.group(1)
-                t = float(m.group(3))
-                if kind == 'global coordinates':
-                    cur = blocks.setdefault(t, {})
+                cur = blocks.setdefault(float(m.group(3)), {}) if m.group(1) == kind else None
                 continue
-            if kind == 'global coordinates':
+            if cur is not None:
                 w = line.split()
-                if len(w) >= 4:
-                    cur[(int(w[0]), int(w[1]))] = (float(w[2]), float(w[3]))
+                if len(w) >= 2 + ncol:
+                    cur[(int(w[0]), int(w[1]))] = tuple(float(v) for v in w[2:2 + ncol])
+    return blocks
+
+
+def read_coord(path):
+    """The integration points' coordinates of the last output time in a
+    .dat file: (time, {(elem, ip): (x, y)})."""
+    blocks = read_ip_blocks(path, 'global coordinates', 2)
     if not blocks:
         fail('%s holds no integration-point coordinates (was the input patched?)' % path)
     t = max(blocks)
@@ -157,21 +162,10 @@ def read_coord(path):
 
 def read_peeq(path, t_want):
     """Per integration point PEEQ at time T_WANT: {(elem, ip): value}."""
-    head = re.compile(r'^\s*(\S.*?)\s*\(.*for set (\S+) and time\s+(\S+)')
-    out = {}
-    take = False
-    with open(path) as f:
-        for line in f:
-            m = head.match(line)
-            if m:
-                take = (m.group(1) == 'equivalent plastic strain'
-                        and abs(float(m.group(3)) - t_want) <= 1e-9 * max(1.0, t_want))
-                continue
-            if take:
-                w = line.split()
-                if len(w) >= 3:
-                    out[(int(w[0]), int(w[1]))] = float(w[2])
-    return out
+    for t, block in read_ip_blocks(path, 'equivalent plastic strain', 1).items():
+        if abs(t - t_want) <= 1e-9 * max(1.0, t_want):
+            return {k: v[0] for k, v in block.items()}
+    return {}
 
 
 def extract(ccx_dir, out_file, s_over_h, band):
