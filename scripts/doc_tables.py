@@ -552,18 +552,27 @@ LIFT_TRACE_CASES = [("cc_fig5a_beadA_steel", LIFT_TRACE_OPTIONS), ("cc_fig6_bead
                     ("cc_round_bead", ["--at", "0.5,1,2", "--also", "normal_stress=none"])]
 
 
+def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
+    """The verbatim outputs of SCRIPT run on each (deck, options) of CASES
+    against the continuum results kept under docs/validation/continuum/
+    (KEPT_FLAG KEPT_PATH formatted with the deck; no CalculiX run), each
+    after its command line, as one code block; WORK names the scratch
+    folder."""
+    parts = []
+    for deck, options in cases:
+        args = [script, f"input/{deck}.nml", kept_flag, kept_path.format(deck=deck)] + options
+        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, work, deck),
+                                             "--bin", ctx.program] + args[1:])
+        parts.append("$ " + " ".join(args) + "\n" + out)
+    return "```\n" + "\n\n".join(parts) + "\n```"
+
+
 def gen_lift_trace(ctx):
     """docs/validation.md: scripts/lift_trace.sh on the clamped steel beads A
     and B and on the round profile bead against the continuum runs kept in
     docs/validation/continuum/<deck>/lift_trace/ (no CalculiX run), verbatim."""
-    parts = []
-    for deck, options in LIFT_TRACE_CASES:
-        kept = f"docs/validation/continuum/{deck}/lift_trace"
-        args = ["scripts/lift_trace.sh", f"input/{deck}.nml", "--ccx", kept] + options
-        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, "lift", deck),
-                                             "--bin", ctx.program] + args[1:])
-        parts.append("$ " + " ".join(args) + "\n" + out)
-    text = "```\n" + "\n\n".join(parts) + "\n```"
+    text = kept_continuum_runs(ctx, "scripts/lift_trace.sh", LIFT_TRACE_CASES, "--ccx",
+                               "docs/validation/continuum/{deck}/lift_trace", "lift")
     return lambda raw: text
 
 # the sheet leaving the bead against the continuum: the decks (their kept
@@ -577,14 +586,9 @@ def gen_exit_state(ctx):
     exit-state decks against the continuum's exit states kept in
     docs/validation/continuum/<deck>/exit_state.txt (no CalculiX run),
     verbatim."""
-    parts = []
-    for deck in EXIT_STATE_DECKS:
-        kept = f"docs/validation/continuum/{deck}/exit_state.txt"
-        args = ["scripts/exit_state_check.sh", f"input/{deck}.nml", "--continuum", kept] + EXIT_STATE_OPTIONS
-        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, "exit_state", deck),
-                                             "--bin", ctx.program] + args[1:])
-        parts.append("$ " + " ".join(args) + "\n" + out)
-    text = "```\n" + "\n\n".join(parts) + "\n```"
+    text = kept_continuum_runs(ctx, "scripts/exit_state_check.sh",
+                               [(deck, EXIT_STATE_OPTIONS) for deck in EXIT_STATE_DECKS], "--continuum",
+                               "docs/validation/continuum/{deck}/exit_state.txt", "exit_state")
     return lambda raw: text
 
 # ---------------------------------------------------------------------------
