@@ -21,9 +21,11 @@
 #   --at LIST         the pulls delta/h compared, comma-separated (default
 #                     0.5,1; each model's largest restraining force is
 #                     always added)
-#   --through N, --per-h M, --initial-inc T, --max-inc T, --min-inc T
-#                     the continuum's mesh and increments
-#                     (scripts/continuum_check.sh)
+#   --through N, --per-h M, --initial-inc T, --max-inc T, --min-inc T,
+#   --contact-slope K
+#                     the continuum's mesh, increments and contact slope
+#                     (scripts/continuum_check.sh; the stepped bead needs
+#                     --contact-slope 1e4)
 #   --also VAR=VALUE  also run the program with the deck variable VAR set
 #                     to VALUE (repeatable: e.g. normal_stress=none,
 #                     n_elements=320) and compare its lift (a line each)
@@ -110,7 +112,7 @@ while (($# > 0)); do
             model_opts+=("$1" "$2")
             shift 2
             ;;
-        --initial-inc | --max-inc | --min-inc)
+        --initial-inc | --max-inc | --min-inc | --contact-slope)
             need_value 'a number' "$@"
             [[ $2 =~ ^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$ ]] || die "$1 needs a positive number, not '$2'"
             model_opts+=("$1" "$2")
