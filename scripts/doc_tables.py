@@ -546,10 +546,12 @@ def gen_ccx_combined_element(ctx):
 
 # the lift traced tool by tool: the decks and the program variants compared
 LIFT_TRACE_OPTIONS = ["--offset", "0.05", "--also", "normal_stress=none", "--also", "n_elements=320"]
-# (deck, options): the profile bead kept with --at 0.5,1,2 (its lift departs
-# after 1h); --offset needs a rectangular bead
+# (deck, options): the profile beads kept with --at 0.5,1,2 (their lift
+# departs after 1h; the stepped bead's continuum with --contact-slope 1e4);
+# --offset needs a rectangular bead
 LIFT_TRACE_CASES = [("cc_fig5a_beadA_steel", LIFT_TRACE_OPTIONS), ("cc_fig6_beadB_steel", LIFT_TRACE_OPTIONS),
-                    ("cc_round_bead", ["--at", "0.5,1,2", "--also", "normal_stress=none"])]
+                    ("cc_round_bead", ["--at", "0.5,1,2", "--also", "normal_stress=none"]),
+                    ("cc_stepped_bead", ["--at", "0.5,1,2", "--also", "normal_stress=none"])]
 
 
 def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
@@ -569,7 +571,7 @@ def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
 
 def gen_lift_trace(ctx):
     """docs/validation.md: scripts/lift_trace.sh on the clamped steel beads A
-    and B and on the round profile bead against the continuum runs kept in
+    and B and on the round and stepped profile beads against the continuum runs kept in
     docs/validation/continuum/<deck>/lift_trace/ (no CalculiX run), verbatim."""
     text = kept_continuum_runs(ctx, "scripts/lift_trace.sh", LIFT_TRACE_CASES, "--ccx",
                                "docs/validation/continuum/{deck}/lift_trace", "lift")
