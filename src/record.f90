@@ -76,6 +76,9 @@ module record
       ! element) in that state
       integer :: max_at = 0
       real(dp), allocatable :: strain_at_max(:)
+      ! the candidate whose lasting fall the stretch test (7.6) held for a
+      ! sheet still drawing in, noted once in the log (0: none)
+      integer :: draw_in_noted = 0
       real(dp) :: peak_force = 0.0_dp, lock_force = 0.0_dp
       real(dp) :: last_lift = 0.0_dp
       integer :: increments = 0, newton_iterations = 0, cutbacks = 0

@@ -6,6 +6,7 @@
 !> the shell theory allows).  Each records the first time it is met in
 !> the run record.
 module tearing
+   use, intrinsic :: iso_fortran_env, only: output_unit
    use kinds, only: dp
    use phases, only: phase_lock, phase_pull
    use errors, only: warn
@@ -128,7 +129,7 @@ contains
       type(state_type), intent(in) :: s
       character(len=*), intent(in) :: phase
       type(run_record), intent(inout) :: rec
-      real(dp) :: load
+      real(dp) :: load, share
       integer :: k
       if (rec%torn) return
       if (phase == phase_lock) then
@@ -141,7 +142,19 @@ contains
             if (rec%n_pull < k0) return
             call track_load_maximum(rec%pull_delta(k0:rec%n_pull), rec%pull_force(k0:rec%n_pull), &
                                     pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.), station_lengths(m), &
-                                    .true., m%thickness, rec%localized, rec%max_at, rec%strain_at_max, load, k)
+                                    .true., m%thickness, rec%localized, rec%max_at, rec%strain_at_max, load, k, &
+                                    drawn_share=share)
+            ! a lasting fall that the stretch test (7.6) holds for a draw-in:
+            ! said once per candidate, so that a user reading the dip in
+            ! pull.dat knows why it is not a tearing point
+            if (share >= 0.0_dp .and. rec%draw_in_noted /= rec%max_at) then
+               rec%draw_in_noted = rec%max_at
+               write (output_unit, '(a)') '# drawbead: load_maximum: the restraining force has stayed 1% below '// &
+                  'its largest (pull/h = '//num(anint(1.0e3_dp*rec%pull_delta(k0 + rec%max_at - 1)/m%thickness) &
+                                              /1.0e3_dp)//') but the sheet keeps drawing in: '// &
+                  num(anint(1.0e2_dp*share)/1.0e2_dp)//' of the pull since stretched it, a neck takes at least '// &
+                  num(neck_stretch_fraction)//' (docs/theory.md (7.6)): not a neck'
+            end if
          end associate
       end if
       if (k > 0) call set_torn(m, rec, phase, load, k)
@@ -262,20 +275,27 @@ contains
    !>  strain_at_max  [in,out] strain per station at the candidate
    !>  tear_load      [out]    the interpolated maximum when torn, else 0
    !>  k              [out]    the neck's station when torn, else 0
+   !>  drawn_share    [out]    optional: in the pull, once the fall has
+   !>                          lasted, the share of the pull since the
+   !>                          maximum that stretched the sheet when it is
+   !>                          below neck_stretch_fraction (the sheet draws
+   !>                          in: not a neck); else -1
    pure subroutine track_load_maximum(delta, force, strain, ds, pulled, h, section_lost, max_at, strain_at_max, &
-                                      tear_load, k)
+                                      tear_load, k, drawn_share)
       real(dp), intent(in) :: delta(:), force(:), strain(:), ds(:), h
       logical, intent(in) :: pulled, section_lost
       integer, intent(inout) :: max_at
       real(dp), allocatable, intent(inout) :: strain_at_max(:)
       real(dp), intent(out) :: tear_load
       integer, intent(out) :: k
+      real(dp), intent(out), optional :: drawn_share
       real(dp), allocatable :: growth(:)
       real(dp) :: stretched
       integer :: n, j
       n = size(force)
       k = 0
       tear_load = 0.0_dp
+      if (present(drawn_share)) drawn_share = -1.0_dp
       ! (two tests: Fortran's .or. may evaluate force(max_at) with max_at = 0)
       if (max_at == 0) then
          max_at = n
@@ -299,6 +319,7 @@ contains
       ! the share of the pull since the maximum taken up as stretch
       stretched = 1.0_dp
       if (pulled) stretched = sum(max(growth, 0.0_dp)*ds)/max(delta(n) - delta(max_at), tiny(1.0_dp))
+      if (present(drawn_share) .and. stretched < neck_stretch_fraction) drawn_share = stretched
       if (neck_confirmed(force(max_at), force(n), (delta(n) - delta(max_at))/h, growth, &
                          section_lost, stretched)) then
          k = first_near_max(growth)
