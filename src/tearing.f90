@@ -198,8 +198,8 @@ contains
       growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
       ! in the pull, a sheet still drawing in is not necking (7.6)
       if (phase == phase_pull) then
-         if (sum(max(growth, 0.0_dp)*station_lengths(m)) &
-             < neck_stretch_fraction*(loads(size(loads)) - loads(rec%max_at))) return
+         if (stretched_share(growth, station_lengths(m), loads(size(loads)) - loads(rec%max_at)) &
+             < neck_stretch_fraction) return
       end if
       call set_torn(m, rec, phase, load_at_maximum(loads, forces, rec%max_at, m%thickness), &
                     first_near_max(growth))
@@ -318,7 +318,7 @@ contains
       growth = strain - strain_at_max
       ! the share of the pull since the maximum taken up as stretch
       stretched = 1.0_dp
-      if (pulled) stretched = sum(max(growth, 0.0_dp)*ds)/max(delta(n) - delta(max_at), tiny(1.0_dp))
+      if (pulled) stretched = stretched_share(growth, ds, delta(n) - delta(max_at))
       if (present(drawn_share) .and. stretched < neck_stretch_fraction) drawn_share = stretched
       if (neck_confirmed(force(max_at), force(n), (delta(n) - delta(max_at))/h, growth, &
                          section_lost, stretched)) then
@@ -494,6 +494,18 @@ contains
       vmax = maxval(v)
       k = maxloc(merge(1, 0, v >= vmax - 1.0e-9_dp*abs(vmax)), 1)
    end function first_near_max
+
+   !> STRETCHED_SHARE: the share of a pull that stretched the sheet, the
+   !> left side of (7.6) over its pull (docs/theory.md §7.4): the stations'
+   !> log-strain growth, where positive, times their reference lengths,
+   !> over the pull.
+   !>  growth  [in] each station's log-strain growth over the pull
+   !>  ds      [in] their reference lengths, mm (station_lengths)
+   !>  pull    [in] the pull, mm (> 0)
+   pure real(dp) function stretched_share(growth, ds, pull)
+      real(dp), intent(in) :: growth(:), ds(:), pull
+      stretched_share = sum(max(growth, 0.0_dp)*ds)/max(pull, tiny(1.0_dp))
+   end function stretched_share
 
    !> STATION_LENGTHS: the reference length each Gauss station stands for,
    !> its element's length times its weight, in the flat list of stations
