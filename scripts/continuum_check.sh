@@ -61,16 +61,9 @@ while (($# > 0)); do
             dir=$2
             shift 2
             ;;
-        --through | --per-h)
+        --through | --per-h | --initial-inc | --max-inc | --min-inc | --output-every | --contact-slope)
             need_value 'a number' "$@"
-            check_count "$1" "$2"
-            model_opts+=("$1" "$2")
-            shift 2
-            ;;
-        --initial-inc | --max-inc | --min-inc | --output-every | --contact-slope)
-            need_value 'a number' "$@"
-            [[ $2 =~ ^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$ ]] || die "$1 needs a positive number, not '$2'"
-            model_opts+=("$1" "$2")
+            model_option "$1" "$2"
             shift 2
             ;;
         --bin)

@@ -83,6 +83,18 @@ check_count() {
     [[ $2 =~ ^[1-9][0-9]*$ ]] || die "$1 needs a positive integer, not '$2'"
 }
 
+# model_option OPTION VALUE: one option of the continuum model
+# (scripts/continuum_model.py: --through and --per-h counts, --initial-inc,
+# --max-inc, --min-inc, --output-every and --contact-slope positive
+# numbers), checked and appended to the caller's array model_opts
+model_option() {
+    case $1 in
+        --through | --per-h) check_count "$1" "$2" ;;
+        *) [[ $2 =~ ^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$ ]] || die "$1 needs a positive number, not '$2'" ;;
+    esac
+    model_opts+=("$1" "$2")
+}
+
 # ---------------------------------------------------------------------------
 # The program
 # ---------------------------------------------------------------------------
