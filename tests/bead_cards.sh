@@ -39,32 +39,9 @@
 # 2 if the test cannot run.
 set -u
 
-cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
-
-prog=${1:-${DRAWBEAD:-bin/drawbead}}
-if [[ ! -x $prog ]]; then
-    echo "bead_cards.sh: no executable '$prog' (build it first)" >&2
-    exit 2
-fi
-[[ $prog == /* ]] || prog=$PWD/$prog
-
-tmp=$(mktemp -d) || exit 2
-trap 'rm -rf "$tmp"' EXIT
-
-failures=0
-checks=0
-check() {
-    # check DESCRIPTION COMMAND...: run COMMAND, report ok/FAIL
-    local what=$1
-    shift
-    checks=$((checks + 1))
-    if "$@"; then
-        echo "ok   $what"
-    else
-        echo "FAIL $what"
-        failures=$((failures + 1))
-    fi
-}
+# shellcheck source=tests/lib.bash
+source "$(dirname "${BASH_SOURCE[0]}")/lib.bash" || exit 2
+test_begin bead_cards.sh "${1:-}"
 
 cat >"$tmp/beadA_free.nml" <<'EOF'
 &control
