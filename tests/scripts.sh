@@ -319,7 +319,7 @@ check "--collect: three rows" test "$(data_rows "$tmp/slurm/table.txt")" -eq 3
 # ---------------------------------------------------------------------------
 if command -v shellcheck >/dev/null 2>&1; then
     echo "== f) shellcheck"
-    check "shellcheck: every script of scripts/, tests/ and tests/regression/" shellcheck scripts/*.sh tests/*.sh tests/regression/*.sh
+    check "shellcheck: every script of scripts/, tests/ (with its lib.bash) and tests/regression/" shellcheck scripts/*.sh tests/*.sh tests/lib.bash tests/regression/*.sh
 fi
 
 # ---------------------------------------------------------------------------
