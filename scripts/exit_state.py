@@ -122,7 +122,7 @@ def patch_inp(inp, model_json, s_over_h, band):
     for k in range(0, len(elems), 8):
         lines.append(', '.join(str(e) for e in elems[k:k + 8]))
     lines.append('*EL PRINT, ELSET=EXITBAND\nCOORD')
-    pos = text.rindex('*END STEP')
+    pos = text.index('*END STEP')
     # the element set before the step, the output request inside it
     step = text.index('*STEP')
     text = (text[:step] + lines[0] + '\n' + '\n'.join(lines[1:-1]) + '\n' + text[step:pos]
