@@ -4,7 +4,7 @@
 Usage:
     continuum_model.py RUN_LOG OUT_DIR [--through N] [--per-h M]
                        [--initial-inc T] [--max-inc T] [--min-inc T]
-                       [--output-every T] [--contact-slope K]
+                       [--output-every T] [--contact-slope K] [--pull-step]
 
 RUN_LOG   the standard output of bin/drawbead on the deck: its "resolved input"
           namelist echo (every variable, defaults filled in, checked by the
@@ -31,6 +31,17 @@ Options:
                      area), and on tight, closed tools (the stepped bead) the
                      default slope makes that jump too large for Newton
                      (docs/continuum-check.md, "Contact stiffness")
+    --pull-step      the pull as a *STATIC step of its own after the lock's
+                     (amplitudes and output times in total time, the same
+                     loads; the pull starts again from --initial-inc).
+                     In one step CalculiX starts each increment from the
+                     last one's displacements extrapolated; at time 1 that
+                     carries on the lock's last motion (the sheet riding up
+                     with the lower tool, the binder faces closing) into
+                     tools that have stopped: on the long exit-state sheets,
+                     pinched over tens of h between closed binder faces, the
+                     first pull increment then never converges
+                     (docs/continuum-check.md, "Long sheets")
 
 The model (docs/continuum-check.md): the sheet is a rectangle [-L, L] x
 [-h/2, h/2] of CPE8R elements, thickness 1 mm (forces per mm width). The
@@ -44,7 +55,8 @@ penalty contact, linear pressure-overclosure, Coulomb friction. The material
 kinematic curve under *PLASTIC, HARDENING=COMBINED, the isotropic one under
 *CYCLIC HARDENING). One *STATIC
 step: the lower tool rises by lock_depth in time 0..1 (right edge held),
-then the right edge is pulled by pull_distance in time 1..2 (tools held).
+then the right edge is pulled by pull_distance in time 1..2 (tools held);
+with --pull-step the pull is a second step (the same loads in total time).
 
 Exit status: 0 done, 2 a case the model does not support (named by deck,
 group and variable) or a file problem.
@@ -462,7 +474,8 @@ def write_lines(f, items, per_line=8):
         f.write(', '.join(str(x) for x in items[i:i + per_line]) + '\n')
 
 
-def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope=CONTACT_SLOPE):
+def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope=CONTACT_SLOPE,
+          pull_step=False):
     """Write OUT_DIR/continuum.inp and continuum_model.json for the case;
     slope: the contact's pressure-overclosure slope, MPa/mm (the stick slope
     is STICK_RATIO times it)."""
@@ -631,10 +644,13 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope
             for n in left:
                 if n != lmid:
                     f.write('2\n%d, 1, 1., %d, 1, -1.\n' % (n, lmid))
-        f.write('*AMPLITUDE, NAME=ALOCK\n0., 0., 1., 1., 2., 1.\n')
-        f.write('*AMPLITUDE, NAME=APULL\n0., 0., 1., 0., 2., 1.\n')
+        # two steps (pull_step): the amplitudes and output times in total time
+        two = pull_step and pull != 0.0
+        total = ', TIME=TOTAL TIME' if two else ''
+        f.write('*AMPLITUDE, NAME=ALOCK%s\n0., 0., 1., 1., 2., 1.\n' % total)
+        f.write('*AMPLITUDE, NAME=APULL%s\n0., 0., 1., 0., 2., 1.\n' % total)
         for name, pts in edge_amp.items():
-            f.write('*AMPLITUDE, NAME=AEDGE%s\n' % name)
+            f.write('*AMPLITUDE, NAME=AEDGE%s%s\n' % (name, total))
             write_lines(f, ['%.12g, %.12g' % p for p in pts + [(2.0, pts[-1][1])]], per_line=4)
         f.write('*BOUNDARY\n')
         for name, n in (('LEFT', lmid), ('RIGHT', rmid)):
@@ -648,13 +664,14 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope
         # print request): n_out per phase, t = 1 (end of locking) among them
         t_end = 2.0 if pull > 0 else 1.0
         n_out = max(1, int(math.ceil(1.0 / out_every - 1e-9)))
-        f.write('*TIME POINTS, NAME=TP\n')
+        f.write('*TIME POINTS, NAME=TP%s\n' % total)
         write_lines(f, ['%.12g' % (k / n_out) for k in range(1, int(round(t_end * n_out)) + 1)])
         f.write('*STEP, NLGEOM, INC=100000\n*STATIC\n%.6g, %.6g, %.6g, %.6g\n'
-                % (inc0, t_end, inc_min, inc_max))
-        f.write('*CONTROLS, PARAMETERS=FIELD\n0.005, 0.01, %.6g, %.6g, 0.02, 1.e-5, 1.e-3, 1.e-8\n'
-                % (FIELD_FORCE, FIELD_FORCE))
-        f.write('*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8, 9, 30, 10, 4, , 10\n')
+                % (inc0, 1.0 if two else t_end, inc_min, inc_max))
+        controls = ('*CONTROLS, PARAMETERS=FIELD\n0.005, 0.01, %.6g, %.6g, 0.02, 1.e-5, 1.e-3, 1.e-8\n'
+                    % (FIELD_FORCE, FIELD_FORCE)
+                    + '*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8, 9, 30, 10, 4, , 10\n')
+        f.write(controls)
         if tool_nodes and lock != 0.0:
             f.write('*BOUNDARY, AMPLITUDE=ALOCK\nNLOWER, 2, 2, %.12g\n' % lock)
         elif tool_nodes:
@@ -673,6 +690,14 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope
         f.write('*NODE PRINT, NSET=NSTRAIN\nU\n')
         f.write('*EL PRINT, ELSET=SHEET\nPEEQ\n')
         f.write('*END STEP\n')
+        if two:
+            # the pull as a step of its own: CalculiX starts it without
+            # extrapolating the lock's last increment (the tools stop, the
+            # edge starts), from the first increment inc0 again
+            f.write('*STEP, NLGEOM, INC=100000\n*STATIC\n%.6g, 1., %.6g, %.6g\n'
+                    % (inc0, inc_min, inc_max))
+            f.write(controls)
+            f.write('*END STEP\n')
 
     info = {
         'deck': deck, 'title': nml.get('control', {}).get('title', ''),
@@ -689,6 +714,8 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope
         'edge_heights': {k.lower(): v for k, v in edge_amp.items()},
         'tool_grid': tool_grid,
     }
+    if pull_step:
+        info['pull_step'] = True
     with open(os.path.join(out_dir, 'continuum_model.json'), 'w') as f:
         json.dump(info, f)
     return path
@@ -712,11 +739,15 @@ def main(argv):
     """Command line: see the module header."""
     args, opts = [], {'--through': 4, '--per-h': 4, '--initial-inc': 0.01,
                       '--max-inc': 0.02, '--min-inc': 1e-7, '--output-every': 0.0,
-                      '--contact-slope': CONTACT_SLOPE}
+                      '--contact-slope': CONTACT_SLOPE,
+                      '--pull-step': False}
     i = 0
     while i < len(argv):
         a = argv[i]
-        if a in opts:
+        if a == '--pull-step':
+            opts[a] = True
+            i += 1
+        elif a in opts:
             if i + 1 >= len(argv):
                 fail('%s needs a value' % a)
             try:
@@ -748,7 +779,7 @@ def main(argv):
     os.makedirs(args[1], exist_ok=True)
     build(nml, args[1], opts['--through'], opts['--per-h'], opts['--initial-inc'],
           opts['--max-inc'], opts['--min-inc'], opts['--output-every'] or opts['--max-inc'],
-          opts['--contact-slope'])
+          opts['--contact-slope'], opts['--pull-step'])
     return 0
 
 

@@ -40,6 +40,10 @@
 #   --output-every T, --contact-slope K
 #                     the continuum's mesh, increments and contact
 #                     (scripts/continuum_check.sh)
+#   --pull-step       the continuum's pull as a step of its own
+#                     (scripts/continuum_model.py --pull-step): the long
+#                     exit-state sheets stop at the start of the pull
+#                     without it (docs/continuum-check.md, "Long sheets")
 #   --bin PATH        the program to run (default bin/drawbead, built first)
 #   -h, --help        this help
 #
@@ -120,6 +124,10 @@ while (($# > 0)); do
             ;;
         --check)
             check=(--check)
+            shift
+            ;;
+        --pull-step)
+            model_opts+=(--pull-step)
             shift
             ;;
         --through | --per-h | --initial-inc | --max-inc | --min-inc | --output-every | --contact-slope)

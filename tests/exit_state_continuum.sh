@@ -23,6 +23,8 @@
 #      top, columns along the sheet), and the thickness read off the
 #      face nodes
 #   e) usage errors: no deck, --ccx and --continuum together (exit 2)
+#   f) scripts/continuum_model.py --pull-step (the pull as a step of its
+#      own) against the one-step model of the same run
 # Usage: tests/exit_state_continuum.sh [binary]   (default: $DRAWBEAD, else bin/drawbead)
 # Prints one line per check; exit status 0 if all pass, 1 if any fails,
 # 2 if the test cannot run.
@@ -163,6 +165,23 @@ scripts/exit_state_check.sh >/dev/null 2>&1
 check "no deck: exit 2" test $? -eq 2
 scripts/exit_state_check.sh "$deck" --ccx "$tmp/ccx" --continuum "$kept" --bin "$prog" >/dev/null 2>&1
 check "--ccx and --continuum together: exit 2" test $? -eq 2
+
+# f) the pull as a step of its own (continuum_model.py --pull-step, which
+# the long exit-state sheets need; docs/continuum-check.md, "Long sheets"):
+# two *STATIC steps, the lock's to time 1 and the pull's, the amplitudes and
+# the output times in total time, and nothing else changed; without it
+# the one-step model
+python3 scripts/continuum_model.py "$tmp/run/program/run.log" "$tmp/one" &&
+    python3 scripts/continuum_model.py "$tmp/run/program/run.log" "$tmp/two" --pull-step
+check "continuum_model.py with and without --pull-step: exit status 0 ($?)" test $? -eq 0
+check "one step without --pull-step, no amplitude in total time" \
+    bash -c "test \$(grep -c '^\*STEP' '$tmp/one/continuum.inp') -eq 1 && ! grep -q 'TOTAL TIME' '$tmp/one/continuum.inp'"
+check "--pull-step: two steps, the lock's ending at time 1, ALOCK, APULL and the output times in total time" \
+    bash -c "test \$(grep -c '^\*STEP' '$tmp/two/continuum.inp') -eq 2 &&
+        test \$(grep -cE '^\*(AMPLITUDE, NAME=A(LOCK|PULL)|TIME POINTS, NAME=TP), TIME=TOTAL TIME$' '$tmp/two/continuum.inp') -eq 3 &&
+        grep -A1 -m1 '^\*STATIC' '$tmp/two/continuum.inp' | grep -q '^0.01, 1, '"
+check "--pull-step changes nothing else (the diff: the three cards, the first step's end, the second step)" \
+    bash -c "test \$(diff '$tmp/one/continuum.inp' '$tmp/two/continuum.inp' | grep -c '^<') -eq 4"
 
 echo "exit_state_continuum.sh: $((checks - failures)) of $checks checks passed"
 ((failures == 0))
