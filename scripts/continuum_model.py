@@ -543,7 +543,8 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope
             # drop points far outside the sheet's reach (the long binder ends)
             keep = [k for k, p in enumerate(pts) if x_lo - h <= p[0] <= x_hi + h]
             pts = pts[max(0, keep[0] - 1):keep[-1] + 2]
-            # thin out the long binder faces: points closer than h/8 in a straight run
+            # the tool strip: each surface point (h/8 apart) and its partner a
+            # strip's width inside the tool, along the surface's normal
             ids_p, ids_q, coords = [], [], []
             for k, p in enumerate(pts):
                 if k == 0:
