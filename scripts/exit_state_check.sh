@@ -110,16 +110,9 @@ while (($# > 0)); do
             band=$2
             shift 2
             ;;
-        --also)
-            need_value 'VAR=VALUE' "$@"
-            [[ $2 =~ ^[a-z_][a-z0-9_]*=[^,]+$ ]] || die "--also needs one VAR=VALUE, not '$2'"
-            also+=("$2")
-            shift 2
-            ;;
-        --offset)
-            need_value 'a number' "$@"
-            [[ $2 =~ ^[0-9]*\.?[0-9]+$ ]] || die "--offset needs a positive number, not '$2'"
-            offsets+=("$2")
+        --also | --offset)
+            need_value 'a value (--also VAR=VALUE, --offset a number)' "$@"
+            variant_option "$1" "$2"
             shift 2
             ;;
         --check)
@@ -190,12 +183,8 @@ if [[ -z $cont_file ]]; then
         python3 "$root/scripts/exit_state.py" patch-inp "$ccx_dir/continuum.inp" \
             "$ccx_dir/continuum_model.json" "$station" --band "$band" ||
             die "cannot ask for the integration points' coordinates"
-        for f in continuum.dat continuum.sta continuum.frd continuum.cvg; do rm -f "$ccx_dir/$f"; done
-        note "running ccx in $ccx_dir (log: ccx.log)"
-        start=$SECONDS
-        (cd "$ccx_dir" && OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} ccx continuum >ccx.log 2>&1)
+        run_ccx "$ccx_dir"
         ccx_rc=$?
-        note "ccx exited with status $ccx_rc after $((SECONDS - start)) s"
     fi
     cont_file=$dir/continuum_exit_state.txt
     python3 "$root/scripts/exit_state.py" extract "$ccx_dir" "$cont_file" "$station" --band "$band" ||
@@ -223,32 +212,13 @@ if ((${#also[@]} + ${#offsets[@]} > 0)); then
     } >>"$dir/exit_state_comparison.txt" || die "cannot compare the deck as it is"
     "$bin" --list-variables >"$dir/variables.txt" || die "cannot list the program's variables"
 fi
-k=0
-for spec in "${also[@]}"; do
-    k=$((k + 1))
-    rm -rf "$dir/sweep"
-    python3 "$root/scripts/sweep_tool.py" decks "$dir/sweep" "$dir/variables.txt" "$deck" \
-        "$spec" >/dev/null || die "cannot write the deck with $spec"
-    mv "$dir/sweep/decks/case_0000.nml" "$dir/deck_also_$k.nml" && rm -rf "$dir/sweep"
-    note "running the program with $spec into $dir/program_also_$k"
-    run_deck "$bin" "$dir/deck_also_$k.nml" "$dir/program_also_$k"
-    rc=$?
-    ((rc == exit_ok)) || die "the program exited with status $rc with $spec"
-    python3 "$root/scripts/exit_state.py" summary "$spec" "$dir/program_also_$k" "$cont_file" \
-        >>"$dir/exit_state_comparison.txt" || die "cannot compare the exit state with $spec"
-done
-k=0
-for off in "${offsets[@]}"; do
-    k=$((k + 1))
-    python3 "$root/scripts/lift_trace.py" offset-deck "$dir/program/run.log" "$dir/variables.txt" \
-        "$deck" "$dir/deck_offset_$k.nml" "$off" || die "cannot offset the tools by $off h"
-    note "running the program with the tools offset by $off h into $dir/program_offset_$k"
-    run_deck "$bin" "$dir/deck_offset_$k.nml" "$dir/program_offset_$k"
-    rc=$?
-    ((rc == exit_ok)) || die "the program exited with status $rc with the tools offset by $off h"
-    python3 "$root/scripts/exit_state.py" summary "tools offset by ${off}h" "$dir/program_offset_$k" \
-        "$cont_file" >>"$dir/exit_state_comparison.txt" || die "cannot compare the exit state with the offset $off"
-done
+# compare_variant LABEL RUN_DIR: a line of the comparison (run_variants)
+# shellcheck disable=SC2317 # called by run_variants
+compare_variant() {
+    python3 "$root/scripts/exit_state.py" summary "$1" "$2" "$cont_file" \
+        >>"$dir/exit_state_comparison.txt" || die "cannot compare the exit state with $1"
+}
+run_variants compare_variant
 rm -f "$dir/variables.txt"
 cat "$dir/exit_state_comparison.txt"
 ((ccx_rc == 0 && cmp_rc == 0)) || exit 1

@@ -95,6 +95,22 @@ model_option() {
     model_opts+=("$1" "$2")
 }
 
+# variant_option OPTION VALUE: --also VAR=VALUE (one variable) or --offset D
+# (a positive number of h), checked and appended to the caller's array
+# also or offsets (run_variants runs them)
+variant_option() {
+    case $1 in
+        --also)
+            [[ $2 =~ ^[a-z_][a-z0-9_]*=[^,]+$ ]] || die "--also needs one VAR=VALUE, not '$2'"
+            also+=("$2")
+            ;;
+        *)
+            [[ $2 =~ ^[0-9]*\.?[0-9]+$ ]] || die "--offset needs a positive number, not '$2'"
+            offsets+=("$2")
+            ;;
+    esac
+}
+
 # ---------------------------------------------------------------------------
 # The program
 # ---------------------------------------------------------------------------
@@ -123,6 +139,23 @@ find_program() {
 # Runs
 # ---------------------------------------------------------------------------
 
+# wait_passing_signals PID: wait for the background job PID and return its
+# exit status; a SIGTERM or SIGINT to this shell meanwhile is passed on to
+# it (a wait cut short by the signal waits again for the job's status)
+wait_passing_signals() {
+    local pid=$1 rc signalled
+    # shellcheck disable=SC2064 # the pid is fixed now
+    trap "signalled=1; kill -TERM $pid 2>/dev/null" TERM INT
+    while :; do
+        signalled=0
+        wait "$pid"
+        rc=$?
+        ((signalled)) || break
+    done
+    trap - TERM INT
+    return "$rc"
+}
+
 # run_deck BIN DECK DIR: run BIN on DECK into DIR, one thread (the runs of
 # a batch share the machine), with stdout and stderr in DIR/run.log and
 # the exit status in DIR/exit_status; removes the outputs of an earlier
@@ -131,23 +164,67 @@ find_program() {
 # exit 4), and its status is still written. Returns the program's exit
 # status.
 run_deck() {
-    local bin=$1 deck=$2 dir=$3 rc f run_pid run_signalled
+    local bin=$1 deck=$2 dir=$3 rc f
     mkdir -p "$dir" || return 1
     for f in "${run_outputs[@]}"; do rm -f "${dir:?}/$f"; done
     OMP_NUM_THREADS=1 "$bin" "$deck" --output "$dir" >"$dir/run.log" 2>&1 &
-    run_pid=$!
-    # shellcheck disable=SC2064 # the pid is fixed now
-    trap "run_signalled=1; kill -TERM $run_pid 2>/dev/null" TERM INT
-    while :; do
-        run_signalled=0
-        wait "$run_pid"
-        rc=$?
-        # a wait cut short by the signal: wait again for the program's status
-        ((run_signalled)) || break
-    done
-    trap - TERM INT
+    wait_passing_signals $!
+    rc=$?
     echo "$rc" >"$dir/exit_status"
     return "$rc"
+}
+
+# run_ccx DIR: CalculiX on DIR/continuum.inp (OMP_NUM_THREADS threads,
+# default 1), its output in DIR/ccx.log, the results of an earlier run
+# removed first; the start and the exit status go to the log. A SIGTERM
+# or SIGINT to the shell running it is passed on to ccx (which would
+# otherwise keep running after the script is gone). Returns ccx's status.
+run_ccx() {
+    local dir=$1 f rc start=$SECONDS
+    for f in continuum.dat continuum.sta continuum.frd continuum.cvg; do rm -f "${dir:?}/$f"; done
+    note "running ccx in $dir (log: ccx.log)"
+    (cd "$dir" && OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} exec ccx continuum >ccx.log 2>&1) &
+    wait_passing_signals $!
+    rc=$?
+    note "ccx exited with status $rc after $((SECONDS - start)) s"
+    return "$rc"
+}
+
+# run_variants ON_RUN: the program on variants of a deck (globals bin,
+# deck, dir, also, offsets, root): with each VAR=VALUE of also[] set
+# (dir/deck_also_K.nml, run into dir/program_also_K) and with both tools'
+# centreline chains moved by each value of offsets[] (in h, toward the
+# tools: lift_trace.py offset-deck, from dir/program/run.log; into
+# dir/program_offset_K). Needs dir/variables.txt (bin --list-variables).
+# After each run "ON_RUN LABEL RUN_DIR" compares it; a deck that cannot be
+# written or a run that does not end normally stops the script.
+run_variants() {
+    local on_run=$1 k=0 spec off rc
+    # shellcheck disable=SC2154 # also and offsets are the caller's
+    for spec in "${also[@]}"; do
+        k=$((k + 1))
+        rm -rf "$dir/sweep"
+        python3 "$root/scripts/sweep_tool.py" decks "$dir/sweep" "$dir/variables.txt" "$deck" \
+            "$spec" >/dev/null || die "cannot write the deck with $spec"
+        mv "$dir/sweep/decks/case_0000.nml" "$dir/deck_also_$k.nml" && rm -rf "$dir/sweep"
+        note "running the program with $spec into $dir/program_also_$k"
+        run_deck "$bin" "$dir/deck_also_$k.nml" "$dir/program_also_$k"
+        rc=$?
+        ((rc == exit_ok)) || die "the program exited with status $rc with $spec"
+        "$on_run" "$spec" "$dir/program_also_$k"
+    done
+    k=0
+    # shellcheck disable=SC2154 # the caller's
+    for off in "${offsets[@]}"; do
+        k=$((k + 1))
+        python3 "$root/scripts/lift_trace.py" offset-deck "$dir/program/run.log" "$dir/variables.txt" \
+            "$deck" "$dir/deck_offset_$k.nml" "$off" || die "cannot offset the tools by $off h"
+        note "running the program with the tools offset by $off h into $dir/program_offset_$k"
+        run_deck "$bin" "$dir/deck_offset_$k.nml" "$dir/program_offset_$k"
+        rc=$?
+        ((rc == exit_ok)) || die "the program exited with status $rc with the tools offset by $off h"
+        "$on_run" "tools offset by ${off}h" "$dir/program_offset_$k"
+    done
 }
 
 # run_pool JOBS ON_DONE: run_deck "$bin" pool_decks[i] pool_dirs[i] for

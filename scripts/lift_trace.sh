@@ -94,16 +94,9 @@ while (($# > 0)); do
             at=$2
             shift 2
             ;;
-        --also)
-            need_value 'VAR=VALUE' "$@"
-            [[ $2 =~ ^[a-z_][a-z0-9_]*=[^,]+$ ]] || die "--also needs one VAR=VALUE, not '$2'"
-            also+=("$2")
-            shift 2
-            ;;
-        --offset)
-            need_value 'a number' "$@"
-            [[ $2 =~ ^[0-9]*\.?[0-9]+$ ]] || die "--offset needs a positive number, not '$2'"
-            offsets+=("$2")
+        --also | --offset)
+            need_value 'a value (--also VAR=VALUE, --offset a number)' "$@"
+            variant_option "$1" "$2"
             shift 2
             ;;
         --through | --per-h | --initial-inc | --max-inc | --min-inc | --contact-slope)
@@ -162,12 +155,8 @@ if [[ $ccx_dir == "$dir/ccx" ]]; then
     python3 "$root/scripts/continuum_model.py" "$dir/program/run.log" "$ccx_dir" \
         --output-every 0.016666666666666666 "${model_opts[@]}" || die "no continuum model for '$deck'"
     python3 "$root/scripts/lift_trace.py" patch-inp "$ccx_dir/continuum.inp" || die "cannot ask for the tools' reactions"
-    for f in continuum.dat continuum.sta continuum.frd continuum.cvg; do rm -f "$ccx_dir/$f"; done
-    note "running ccx in $ccx_dir (log: ccx.log)"
-    start=$SECONDS
-    (cd "$ccx_dir" && OMP_NUM_THREADS=${OMP_NUM_THREADS:-1} ccx continuum >ccx.log 2>&1)
+    run_ccx "$ccx_dir"
     ccx_rc=$?
-    note "ccx exited with status $ccx_rc after $((SECONDS - start)) s"
     python3 "$root/scripts/continuum_results.py" convert "$ccx_dir" "$ccx_dir/converted" --program "$bin" ||
         die "cannot convert the results in $ccx_dir"
 fi
@@ -190,32 +179,13 @@ fi
     python3 "$root/scripts/lift_trace.py" summary "the deck as it is" "$dir/program" "$ccx_dir" --at "$at"
 } >>"$dir/lift_trace.txt" || die "cannot compare the lift"
 "$bin" --list-variables >"$dir/variables.txt" || die "cannot list the program's variables"
-k=0
-for spec in "${also[@]}"; do
-    k=$((k + 1))
-    rm -rf "$dir/sweep"
-    python3 "$root/scripts/sweep_tool.py" decks "$dir/sweep" "$dir/variables.txt" "$deck" \
-        "$spec" >/dev/null || die "cannot write the deck with $spec"
-    mv "$dir/sweep/decks/case_0000.nml" "$dir/deck_also_$k.nml" && rm -rf "$dir/sweep"
-    note "running the program with $spec into $dir/program_also_$k"
-    run_deck "$bin" "$dir/deck_also_$k.nml" "$dir/program_also_$k"
-    rc=$?
-    ((rc == exit_ok)) || die "the program exited with status $rc with $spec"
-    python3 "$root/scripts/lift_trace.py" summary "$spec" "$dir/program_also_$k" "$ccx_dir" --at "$at" \
-        >>"$dir/lift_trace.txt" || die "cannot compare the lift with $spec"
-done
-k=0
-for off in "${offsets[@]}"; do
-    k=$((k + 1))
-    python3 "$root/scripts/lift_trace.py" offset-deck "$dir/program/run.log" "$dir/variables.txt" \
-        "$deck" "$dir/deck_offset_$k.nml" "$off" || die "cannot offset the tools by $off h"
-    note "running the program with the tools offset by $off h into $dir/program_offset_$k"
-    run_deck "$bin" "$dir/deck_offset_$k.nml" "$dir/program_offset_$k"
-    rc=$?
-    ((rc == exit_ok)) || die "the program exited with status $rc with the tools offset by $off h"
-    python3 "$root/scripts/lift_trace.py" summary "tools offset by ${off}h" "$dir/program_offset_$k" \
-        "$ccx_dir" --at "$at" >>"$dir/lift_trace.txt" || die "cannot compare the lift with the offset $off"
-done
+# compare_variant LABEL RUN_DIR: a line of the lift's comparison (run_variants)
+# shellcheck disable=SC2317 # called by run_variants
+compare_variant() {
+    python3 "$root/scripts/lift_trace.py" summary "$1" "$2" "$ccx_dir" --at "$at" \
+        >>"$dir/lift_trace.txt" || die "cannot compare the lift with $1"
+}
+run_variants compare_variant
 rm -f "$dir/variables.txt"
 cat "$dir/lift_trace.txt"
 ((ccx_rc == 0)) || exit 1

@@ -37,32 +37,9 @@
 # 2 if the test cannot run.
 set -u
 
-cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
-
-prog=${1:-${DRAWBEAD:-bin/drawbead}}
-if [[ ! -x $prog ]]; then
-    echo "scripts.sh: no executable '$prog' (build it first)" >&2
-    exit 2
-fi
-[[ $prog == /* ]] || prog=$PWD/$prog
-
-tmp=$(mktemp -d) || exit 2
-trap 'rm -rf "$tmp"' EXIT
-
-failures=0
-checks=0
-check() {
-    # check DESCRIPTION COMMAND...: run COMMAND, report ok/FAIL
-    local what=$1
-    shift
-    checks=$((checks + 1))
-    if "$@"; then
-        echo "ok   $what"
-    else
-        echo "FAIL $what"
-        failures=$((failures + 1))
-    fi
-}
+# shellcheck source=tests/lib.bash
+source "$(dirname "${BASH_SOURCE[0]}")/lib.bash" || exit 2
+test_begin scripts.sh "${1:-}"
 
 # is_png FILE: FILE exists and starts with the PNG signature
 is_png() {
