@@ -350,6 +350,64 @@ def gen_tearing_default(ctx):
     return lambda raw: text
 
 
+# the strain-gradient coefficient's share in the tearing point (theory
+# 12.7): the clamped continuum-check decks that neck in the pull and the
+# double bead, stopped at tearing, with &sheet strain_gradient scaled
+GRADIENT_DECKS = ["input/cc_fig5a_beadA_steel.nml", "input/cc_fig6_beadB_steel.nml",
+                  "input/cc_beadA_steel_mu0.nml", "input/cc_beadA_aluminium.nml",
+                  "input/cc_beadB_aluminium.nml", "input/cc_beadB_hss.nml", "input/cc_double_bead.nml"]
+GRADIENT_VALUES = [0.25, 0.5, 1.0, 2.0]
+
+
+def matching_value(values, tears, target):
+    """The coefficient at which the tearing point meets target, linear in
+    log(coefficient) between the neighbouring values of the study whose
+    tearing points bracket it (tearing points rise with the coefficient);
+    a bound ("< v", "> v") outside the range studied."""
+    pairs = [(v, t) for v, t in zip(values, tears) if t is not None]
+    if not pairs or target is None:
+        return "none"
+    for (v0, t0), (v1, t1) in zip(pairs, pairs[1:]):
+        if t0 <= target <= t1 and t1 > t0:
+            w = (target - t0) / (t1 - t0)
+            return "%.2f" % math.exp(math.log(v0) + w * (math.log(v1) - math.log(v0)))
+    return "< %g" % pairs[0][0] if target < pairs[0][1] else "> %g" % pairs[-1][0]
+
+
+def gen_strain_gradient_study(ctx):
+    """docs/theory.md 12.7: the tearing point (tearing_delta_over_h) of the
+    GRADIENT_DECKS, 80 elements, stopped at tearing, with strain_gradient =
+    each of GRADIENT_VALUES, against the continuum's neck (the pull at its
+    largest restraining force, docs/validation/continuum/<deck>/
+    continuum_summary.txt), and the coefficient that would meet it."""
+    decks = stopped_decks(ctx, "gradient_decks", GRADIENT_DECKS)
+    jobs, names = [], []
+    for deck in decks:
+        text = read_doc(deck)
+        if "\n&sheet\n" not in text:
+            raise RuntimeError(f"{deck}: no &sheet line of its own")
+        base = os.path.basename(deck)[:-4]
+        for value in GRADIENT_VALUES:
+            name = f"gradient_{base}_{value:g}"
+            jobs.append((name, text.replace("\n&sheet\n", "\n&sheet\n   strain_gradient = %g\n" % value, 1)))
+            names.append(name)
+    res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    rows = []
+    for deck in decks:
+        base = os.path.basename(deck)[:-4]
+        cont = read_summary(os.path.join(ROOT, "docs", "validation", "continuum", base, "continuum_summary.txt"))
+        neck = real(cont, "max_restraining_force_at_delta_over_h")
+        tears = [real(res[f"gradient_{base}_{v:g}"], "tearing_delta_over_h") for v in GRADIENT_VALUES]
+        ratios = [None if t is None or neck is None else t / neck for t in tears]
+        rows.append([base, Num(neck, ".3f")] + [Num(t, ".3f") for t in tears]
+                    + [Num(r, ".2f") for r in ratios] + [matching_value(GRADIENT_VALUES, tears, neck)])
+    header = (["deck (stopped at tearing, 80 elements)", "continuum's neck Δ/h"]
+              + ["tearing Δ/h, c × %g" % v for v in GRADIENT_VALUES]
+              + ["/ continuum, c × %g" % v for v in GRADIENT_VALUES] + ["c × that meets it"])
+    align = ["---"] + ["---:"] * (2 + 2 * len(GRADIENT_VALUES))
+    return lambda raw: markdown_table(header, align, rows, raw)
+
+
 def gen_tearing_neck(ctx):
     """docs/validation.md: the clamped steel continuum-check decks with
     refine_neck, stopped at the tearing point, scripts/convergence.sh -m -n
@@ -801,6 +859,9 @@ GENERATORS = {
                             "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks, uniform"),
     "tearing_default": ("docs/validation.md", gen_tearing_default,
                         "scripts/convergence.sh -m and -s on the clamped cc_ decks stopped at tearing (refine_exit)"),
+    "strain_gradient_study": ("docs/theory.md", gen_strain_gradient_study,
+                              "the clamped cc_ decks and the double bead stopped at tearing,"
+                              " strain_gradient x 0.25 to 2, against the continuum's neck"),
     "tearing_neck": ("docs/validation.md", gen_tearing_neck,
                      "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks with refine_neck"),
     "tearing_neck_steps": ("docs/validation.md", gen_tearing_neck_steps,
