@@ -408,6 +408,18 @@ def gen_strain_gradient_study(ctx):
     return lambda raw: markdown_table(header, align, rows, raw)
 
 
+def gen_tearing_step_sweep(ctx):
+    """docs/validation.md: scripts/convergence.sh -s with the increments
+    halved three times on the clamped bead A steel deck stopped at its
+    tearing point (the default path), verbatim."""
+    decks = stopped_decks(ctx, "step_sweep_decks", ["input/cc_fig5a_beadA_steel.nml"])
+    out = script_output(ctx, ["scripts/convergence.sh", "-s", "-f", "1 0.5 0.25 0.125",
+                              "-o", os.path.join(ctx.tmp, "step_sweep")] + decks)
+    text = ('```\n$ scripts/convergence.sh -s -f "1 0.5 0.25 0.125" <cc_fig5a_beadA_steel, '
+            'stop_at_localization = .true.>\n' + out + "\n```")
+    return lambda raw: text
+
+
 def gen_tearing_neck(ctx):
     """docs/validation.md: the clamped steel continuum-check decks with
     refine_neck, stopped at the tearing point, scripts/convergence.sh -m -n
@@ -859,6 +871,8 @@ GENERATORS = {
                             "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks, uniform"),
     "tearing_default": ("docs/validation.md", gen_tearing_default,
                         "scripts/convergence.sh -m and -s on the clamped cc_ decks stopped at tearing (refine_exit)"),
+    "tearing_step_sweep": ("docs/validation.md", gen_tearing_step_sweep,
+                           "scripts/convergence.sh -s -f \"1 0.5 0.25 0.125\" on cc_fig5a stopped at tearing"),
     "strain_gradient_study": ("docs/theory.md", gen_strain_gradient_study,
                               "the clamped cc_ decks and the double bead stopped at tearing,"
                               " strain_gradient x 0.25 to 2, against the continuum's neck"),
