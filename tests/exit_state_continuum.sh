@@ -25,6 +25,9 @@
 #   e) usage errors: no deck, --ccx and --continuum together (exit 2)
 #   f) scripts/continuum_model.py --pull-step (the pull as a step of its
 #      own) against the one-step model of the same run
+#   g) bead B (input/exit_fig9d_beadB_steel_free.nml) against its kept
+#      continuum exit state: thickness and middle within the targets, the
+#      faces 12-15% high (the 10% target is missed), held at 18%
 # Usage: tests/exit_state_continuum.sh [binary]   (default: $DRAWBEAD, else bin/drawbead)
 # Prints one line per check; exit status 0 if all pass, 1 if any fails,
 # 2 if the test cannot run.
@@ -182,6 +185,32 @@ check "--pull-step: two steps, the lock's ending at time 1, ALOCK, APULL and the
         grep -A1 -m1 '^\*STATIC' '$tmp/two/continuum.inp' | grep -q '^0.01, 1, '"
 check "--pull-step changes nothing else (the diff: the three cards, the first step's end, the second step)" \
     bash -c "test \$(diff '$tmp/one/continuum.inp' '$tmp/two/continuum.inp' | grep -c '^<') -eq 4"
+
+# g) bead B (input/exit_fig9d_beadB_steel_free.nml, 140h pulled 48h, about
+# 8 s) against its kept continuum exit state (the pull a step of its own,
+# 2 per h, slope 1e4): thickness within 2% and the middle's plastic strain
+# within 10%, the targets; the faces' measured 11.9% and 15.2% high (the
+# 10% target is not met, docs/validation.md "The sheet leaving the bead"),
+# held here at 18%, and the whole profile above the continuum's
+deck_b=input/exit_fig9d_beadB_steel_free.nml
+kept_b=docs/validation/continuum/exit_fig9d_beadB_steel_free/exit_state.txt
+scripts/exit_state_check.sh "$deck_b" -o "$tmp/run_b" --continuum "$kept_b" --bin "$prog" \
+    >"$tmp/table_b.txt" 2>"$tmp/err_b.txt"
+rc=$?
+check "bead B: exit_state_check.sh with its kept continuum exit state: exit status 0 ($rc)" test "$rc" -eq 0
+check "bead B: the material at the exit station has passed the whole bead" \
+    grep -q '^# passed the whole bead: yes' "$tmp/run_b/program/exit_state.dat"
+python3 scripts/exit_state.py compare "$tmp/run_b/program" "$kept_b" --check --tol-middle 0.10 \
+    --tol-eqps 0.18 >"$tmp/check_b.txt"
+rc=$?
+check "bead B: thickness within 2%, the middle's eqps within 10%, the faces' within 18% (exit status $rc)" \
+    test "$rc" -eq 0
+python3 scripts/exit_state.py compare "$tmp/run_b/program" "$kept_b" --check --tol-eqps 0.10 \
+    >"$tmp/check_b10.txt"
+rc=$?
+check "bead B: the faces outside 10% (the target missed, as measured): exit status 1 ($rc), both faces named" \
+    bash -c "test $rc -eq 1 && grep -q '^# outside the targets: eqps, bottom face (z = -h/2), eqps, top face (z = +h/2)$' \
+        '$tmp/check_b10.txt'"
 
 echo "exit_state_continuum.sh: $((checks - failures)) of $checks checks passed"
 ((failures == 0))
