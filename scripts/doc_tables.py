@@ -381,16 +381,15 @@ def gen_strain_gradient_study(ctx):
     largest restraining force, docs/validation/continuum/<deck>/
     continuum_summary.txt), and the coefficient that would meet it."""
     decks = stopped_decks(ctx, "gradient_decks", GRADIENT_DECKS)
-    jobs, names = [], []
+    jobs = []
     for deck in decks:
         text = read_doc(deck)
         if "\n&sheet\n" not in text:
             raise RuntimeError(f"{deck}: no &sheet line of its own")
         base = os.path.basename(deck)[:-4]
         for value in GRADIENT_VALUES:
-            name = f"gradient_{base}_{value:g}"
-            jobs.append((name, text.replace("\n&sheet\n", "\n&sheet\n   strain_gradient = %g\n" % value, 1)))
-            names.append(name)
+            jobs.append((f"gradient_{base}_{value:g}",
+                         text.replace("\n&sheet\n", "\n&sheet\n   strain_gradient = %g\n" % value, 1)))
     res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
     rows = []
     for deck in decks:
