@@ -186,21 +186,27 @@ def extract(ccx_dir, out_file, s_over_h, band):
     per = {}
     for (e, ip), xy in coord.items():
         per.setdefault(e, []).append((ip, xy))
+    # each element's centre (the mean of its points)
+    centre = {}
+    for e in elems:
+        pts = per[e]
+        centre[e] = (sum(p[1][0] for p in pts) / len(pts), sum(p[1][1] for p in pts) / len(pts))
     data = {}    # (column of points, row of points) -> [reference x, reference z, peeq]
     for e in elems:
         pts = per[e]
         ei, ej = (e - 1) % nx, (e - 1) // nx
-        cx = sum(p[1][0] for p in pts) / len(pts)
-        cy = sum(p[1][1] for p in pts) / len(pts)
-        # the element's current axis: from the mean of its points on one
-        # side to the other (the points' first principal direction)
-        sxx = sum((p[1][0] - cx) ** 2 for p in pts)
-        syy = sum((p[1][1] - cy) ** 2 for p in pts)
-        sxy = sum((p[1][0] - cx) * (p[1][1] - cy) for p in pts)
-        ang = 0.5 * math.atan2(2 * sxy, sxx - syy)
-        tx, ty = math.cos(ang), math.sin(ang)
-        if tx < 0:
-            tx, ty = -tx, -ty
+        cx, cy = centre[e]
+        # the element's current axis: from the centre of its neighbour
+        # before it in its layer to that of the one after it (the direction
+        # of growing reference x; the points' own scatter gives no
+        # direction in a square element, 4 per h along and 4 through)
+        e0 = e - 1 if ei > 0 and (e - 1) in centre else e
+        e1 = e + 1 if ei < nx - 1 and (e + 1) in centre else e
+        tx, ty = centre[e1][0] - centre[e0][0], centre[e1][1] - centre[e0][1]
+        norm = math.hypot(tx, ty)
+        if not norm > 0.0:
+            fail('element %d: no neighbour to give the sheet\'s direction' % e)
+        tx, ty = tx / norm, ty / norm
         for ip, (x, y) in pts:
             a = (x - cx) * tx + (y - cy) * ty
             b = -(x - cx) * ty + (y - cy) * tx

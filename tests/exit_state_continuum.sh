@@ -10,11 +10,10 @@
 #   a) the material at the exit station started left of the first radius
 #      (it has passed the whole bead)
 #   b) thickness within 2%, equivalent plastic strain at the bottom and
-#      top faces within 10% (--check: exit status 0); the middle within 13%
-#      (measured 11.1% high: the 10% target is not met, see below) and its
-#      ratio that of the thickness log strain within 2% (the middle's
-#      plastic strain is the membrane's)
-#   c) the check can fail: the kept continuum with its thickness 3% larger,
+#      top faces and at the middle within 10% (--check: exit status 0), the
+#      middle's ratio that of the thickness log strain within 2% (the
+#      middle's plastic strain is the membrane's)
+#   c) the check can fail: the kept continuum with its thickness 4% larger,
 #      or with its top face's strain 25% larger, gives exit status 1 and
 #      says which
 #   d) extract (scripts/exit_state.py) on a continuum.dat written by hand:
@@ -49,13 +48,12 @@ check "exit_state_check.sh with a kept continuum exit state: exit status 0 ($rc)
 check "the material at the exit station has passed the whole bead" \
     grep -q '^# passed the whole bead: yes' "$tmp/run/program/exit_state.dat"
 # The middle's strain is the membrane's, (2/sqrt 3) |ln(t/h)|: at a thickness
-# strain of -0.15 the 2% of the thickness are 12% of it, and the program's
-# sheet is 1.8% thinner than the continuum's (docs/validation.md, "The sheet
-# leaving the bead"): measured 11.1% high, the 10% target is not met; the
-# middle is held at 13% here, and to the thickness strain's ratio below.
-python3 scripts/exit_state.py compare "$tmp/run/program" "$kept" --check --tol-middle 0.13 >"$tmp/check.txt"
+# strain of -0.18 the 2% of the thickness are 11% of it (docs/validation.md,
+# "The sheet leaving the bead"): measured 7.2% low against the continuum's
+# default mesh, whose sheet is 1.0% thinner than the program's.
+python3 scripts/exit_state.py compare "$tmp/run/program" "$kept" --check >"$tmp/check.txt"
 rc=$?
-check "thickness within 2%, eqps at the faces within 10%, at the middle within 13% (exit status $rc)" \
+check "thickness within 2%, eqps at the faces and the middle within 10% (exit status $rc)" \
     test "$rc" -eq 0
 # ratio ROW: the ratio column of the table's row ROW (its label, fixed width)
 ratio() {
@@ -77,7 +75,7 @@ thick, top = [], []
 for line in lines:
     w = line.split()
     if w and w[0] == 'thick':
-        thick.append('thick %s %s %.9e' % (w[1], w[2], float(w[3]) + math.log(1.03)))
+        thick.append('thick %s %s %.9e' % (w[1], w[2], float(w[3]) + math.log(1.04)))
     else:
         thick.append(line)
     if w and w[0] == 'eqps':
@@ -87,24 +85,27 @@ for line in lines:
 open(d + '/thick.txt', 'w').write('\n'.join(thick) + '\n')
 open(d + '/top.txt', 'w').write('\n'.join(top) + '\n')
 EOF
-python3 scripts/exit_state.py compare "$tmp/run/program" "$tmp/thick.txt" --check --tol-middle 0.13 >"$tmp/thick.out"
+python3 scripts/exit_state.py compare "$tmp/run/program" "$tmp/thick.txt" --check >"$tmp/thick.out"
 rc=$?
-check "the continuum 3% thicker: exit status 1 ($rc), the thickness named" \
+check "the continuum 4% thicker: exit status 1 ($rc), the thickness named" \
     bash -c "test $rc -eq 1 && grep -q '^# outside the targets: thickness$' '$tmp/thick.out'"
-python3 scripts/exit_state.py compare "$tmp/run/program" "$tmp/top.txt" --check --tol-middle 0.13 >"$tmp/top.out"
+python3 scripts/exit_state.py compare "$tmp/run/program" "$tmp/top.txt" --check >"$tmp/top.out"
 rc=$?
 check "the continuum's top face 25% harder: exit status 1 ($rc), the top face named" \
     bash -c "test $rc -eq 1 && grep -q '^# outside the targets: eqps, top face' '$tmp/top.out'"
 
-# d) extract on a continuum written by hand: 2L = 8 mm, h = 1 mm, 4 x 2
-# CPE8R elements, turned by 10 degrees about the origin; eqps = 0.1 + the
+# d) extract on a continuum written by hand: 2L = 8 mm, h = 1 mm, 20 x 2
+# CPE8R elements (0.4 mm along, 0.45 mm through once squeezed: shorter
+# along the sheet than through it, so that their points' own scatter
+# points across the sheet, as in the default continuum's square elements
+# where it gives no direction), turned by 10 degrees about the origin; eqps = 0.1 + the
 # reference z/h + 0.01 x the reference x (mm), the face nodes 0.9 mm apart
 # (thickness log strain ln 0.9)
 mkdir -p "$tmp/ccx"
 python3 - "$tmp/ccx" <<'EOF' || exit 2
 import json, math, os, sys
 d = sys.argv[1]
-h, half, nx, ny = 1.0, 4.0, 4, 2
+h, half, nx, ny = 1.0, 4.0, 20, 2
 c, s = math.cos(math.radians(10)), math.sin(math.radians(10))
 turn = lambda x, y: (c * x - s * y, s * x + c * y)
 ni = 2 * nx + 1
@@ -135,7 +136,7 @@ for ej in range(ny):
         e = ej * nx + ei + 1
         for k in range(8):
             sa, sb = order[k % 4]
-            xr = -half + (ei + 0.5) * 2 + sa * g
+            xr = -half + (ei + 0.5) * (2 * half / nx) + sa * g * half / nx
             zr = -0.5 + (ej + 0.5) * 0.5 + sb * 0.25 * g
             x, y = turn(xr, 0.9 * zr)
             pe.append('%10d%5d  %.6E\n' % (e, k + 1, 0.1 + zr + 0.01 * xr))
