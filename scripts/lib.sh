@@ -199,7 +199,7 @@ run_ccx() {
 # After each run "ON_RUN LABEL RUN_DIR" compares it; a deck that cannot be
 # written or a run that does not end normally stops the script.
 run_variants() {
-    local on_run=$1 k=0 spec off rc
+    local on_run=$1 k=0 spec off
     # shellcheck disable=SC2154 # also and offsets are the caller's
     for spec in "${also[@]}"; do
         k=$((k + 1))
@@ -207,11 +207,7 @@ run_variants() {
         python3 "$root/scripts/sweep_tool.py" decks "$dir/sweep" "$dir/variables.txt" "$deck" \
             "$spec" >/dev/null || die "cannot write the deck with $spec"
         mv "$dir/sweep/decks/case_0000.nml" "$dir/deck_also_$k.nml" && rm -rf "$dir/sweep"
-        note "running the program with $spec into $dir/program_also_$k"
-        run_deck "$bin" "$dir/deck_also_$k.nml" "$dir/program_also_$k"
-        rc=$?
-        ((rc == exit_ok)) || die "the program exited with status $rc with $spec"
-        "$on_run" "$spec" "$dir/program_also_$k"
+        run_variant "$on_run" "also_$k" "$spec" "$spec"
     done
     k=0
     # shellcheck disable=SC2154 # the caller's
@@ -219,12 +215,20 @@ run_variants() {
         k=$((k + 1))
         python3 "$root/scripts/lift_trace.py" offset-deck "$dir/program/run.log" "$dir/variables.txt" \
             "$deck" "$dir/deck_offset_$k.nml" "$off" || die "cannot offset the tools by $off h"
-        note "running the program with the tools offset by $off h into $dir/program_offset_$k"
-        run_deck "$bin" "$dir/deck_offset_$k.nml" "$dir/program_offset_$k"
-        rc=$?
-        ((rc == exit_ok)) || die "the program exited with status $rc with the tools offset by $off h"
-        "$on_run" "tools offset by ${off}h" "$dir/program_offset_$k"
+        run_variant "$on_run" "offset_$k" "the tools offset by $off h" "tools offset by ${off}h"
     done
+}
+
+# run_variant ON_RUN NAME WHAT LABEL: run dir/deck_NAME.nml into
+# dir/program_NAME ("running the program with WHAT"), stop the script if
+# it does not end normally, then "ON_RUN LABEL RUN_DIR" (run_variants).
+run_variant() {
+    local on_run=$1 name=$2 what=$3 label=$4 rc
+    note "running the program with $what into $dir/program_$name"
+    run_deck "$bin" "$dir/deck_$name.nml" "$dir/program_$name"
+    rc=$?
+    ((rc == exit_ok)) || die "the program exited with status $rc with $what"
+    "$on_run" "$label" "$dir/program_$name"
 }
 
 # run_pool JOBS ON_DONE: run_deck "$bin" pool_decks[i] pool_dirs[i] for
