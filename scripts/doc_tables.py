@@ -407,6 +407,70 @@ def gen_strain_gradient_study(ctx):
     return lambda raw: markdown_table(header, align, rows, raw)
 
 
+FRICTION_CASES = [(0.0, "cc_beadA_steel_mu0"), (0.05, "friction_beadA_mu0.05"),
+                  (0.1, "cc_fig5a_beadA_steel"), (0.2, "friction_beadA_mu0.2")]
+FRICTION_ELEMENTS = [80, 160, 640]
+
+
+def continuum_neck_place(folder):
+    """The reference s/h of the continuum's thinnest mid-surface row at the
+    end of its pull (strain_pull.dat column 8): where it necked."""
+    best = None
+    with open(os.path.join(folder, "strain_pull.dat")) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            cols = line.split()
+            eps = float(cols[7])
+            if best is None or eps < best[0]:
+                best = (eps, float(cols[0]))
+    return None if best is None else best[1]
+
+
+def gen_tearing_friction(ctx):
+    """docs/validation.md: the tearing point of input/cc_fig5a_beadA_steel.nml
+    with friction = each mu of FRICTION_CASES, pulled 4h and stopped at
+    tearing, on FRICTION_ELEMENTS elements (the default path; the finer
+    meshes with the largest increment 0.1h * 80 / n, as scripts/convergence.sh
+    -m), against the
+    continuum's neck kept in docs/validation/continuum/<case>/ (the pull at
+    its largest restraining force, and where its sheet necked)."""
+    base = read_doc("input/cc_fig5a_beadA_steel.nml")
+    for old in ("friction = 0.1\n", "pull_distance = 2.286", "n_elements = 80", "stop_at_localization = .false."):
+        if old not in base:
+            raise RuntimeError(f"input/cc_fig5a_beadA_steel.nml: {old.strip()} expected")
+    jobs = []
+    for mu, _ in FRICTION_CASES:
+        for n in FRICTION_ELEMENTS:
+            # the finer meshes as scripts/convergence.sh -m runs them: the
+            # largest increment 0.1h * 80 / n (h = 0.762 mm)
+            loading = "pull_distance = 3.048" if n == 80 else \
+                "pull_distance = 3.048, max_increment = %.8g" % (0.0762 * 80 / n)
+            text = (base.replace("friction = 0.1\n", "friction = %g\n" % mu, 1)
+                    .replace("pull_distance = 2.286", loading, 1)
+                    .replace("n_elements = 80", "n_elements = %d" % n, 1)
+                    .replace("stop_at_localization = .false.", "stop_at_localization = .true.", 1))
+            jobs.append((f"friction_{mu:g}_{n}", text))
+    res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    rows = []
+    for mu, case in FRICTION_CASES:
+        folder = os.path.join(ROOT, "docs", "validation", "continuum", case)
+        cont = read_summary(os.path.join(folder, "continuum_summary.txt"))
+        neck = real(cont, "max_restraining_force_at_delta_over_h")
+        tears = [real(res[f"friction_{mu:g}_{n}"], "tearing_delta_over_h") for n in FRICTION_ELEMENTS]
+        first = res[f"friction_{mu:g}_{FRICTION_ELEMENTS[0]}"]
+        rows.append(["%g" % mu, Num(neck, ".3f"), Num(continuum_neck_place(folder), ".1f")]
+                    + [Num(t, ".3f") for t in tears]
+                    + [Num(None if tears[0] is None or neck is None else tears[0] / neck, ".2f"),
+                       Num(None if tears[0] is None or tears[-1] is None else 100.0 * (tears[0] / tears[-1] - 1.0), "+.1f"),
+                       Num(real(first, "tearing_s_over_h"), ".1f"), first.get("tearing_mesh_dependent", "none")])
+    header = (["μ", "continuum's neck Δ/h", "its place s/h"]
+              + ["tearing Δ/h, %d elements%s" % (n, "" if n == 80 else " (-m)") for n in FRICTION_ELEMENTS]
+              + ["80 / continuum", "80 against 640, %", "place s/h (80)", "mesh dependent (80)"])
+    align = ["---:"] * (len(header) - 1) + ["---"]
+    return lambda raw: markdown_table(header, align, rows, raw)
+
+
 def gen_tearing_step_sweep(ctx):
     """docs/validation.md: scripts/convergence.sh -s with the increments
     halved three times on the clamped bead A steel deck stopped at its
@@ -617,7 +681,7 @@ def gen_ccx_combined_element(ctx):
 
 
 # the lift traced tool by tool: the decks and the program variants compared
-LIFT_TRACE_OPTIONS = ["--offset", "0.05", "--also", "normal_stress=none", "--also", "n_elements=320"]
+LIFT_TRACE_OPTIONS = ["--offset", "0.05", "--also", "normal_stress=none", "--also", "n_elements=240"]
 # (deck, options): the profile beads kept with --at 0.5,1,2 (their lift
 # departs after 1h; the stepped bead's continuum with --contact-slope 1e4);
 # --offset needs a rectangular bead
@@ -876,6 +940,9 @@ GENERATORS = {
                             "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks, uniform"),
     "tearing_default": ("docs/validation.md", gen_tearing_default,
                         "scripts/convergence.sh -m and -s on the clamped cc_ decks stopped at tearing (refine_exit)"),
+    "tearing_friction": ("docs/validation.md", gen_tearing_friction,
+                         "cc_fig5a with friction 0, 0.05, 0.1 and 0.2 stopped at tearing on 80, 160, 640 elements"
+                         " against the kept continuum necks"),
     "tearing_step_sweep": ("docs/validation.md", gen_tearing_step_sweep,
                            "scripts/convergence.sh -s -f \"1 0.5 0.25 0.125\" on cc_fig5a stopped at tearing"),
     "strain_gradient_study": ("docs/theory.md", gen_strain_gradient_study,
