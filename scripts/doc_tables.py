@@ -415,16 +415,9 @@ FRICTION_ELEMENTS = [80, 160, 640]
 def continuum_neck_place(folder):
     """The reference s/h of the continuum's thinnest mid-surface row at the
     end of its pull (strain_pull.dat column 8): where it necked."""
-    best = None
-    with open(os.path.join(folder, "strain_pull.dat")) as f:
-        for line in f:
-            if line.startswith("#") or not line.strip():
-                continue
-            cols = line.split()
-            eps = float(cols[7])
-            if best is None or eps < best[0]:
-                best = (eps, float(cols[0]))
-    return None if best is None else best[1]
+    with open(os.path.join(folder, "strain_pull.dat"), encoding="utf-8") as f:
+        rows = [ln.split() for ln in f if ln.strip() and not ln.startswith("#")]
+    return float(min(rows, key=lambda cols: float(cols[7]))[0]) if rows else None
 
 
 def gen_tearing_friction(ctx):
