@@ -98,6 +98,11 @@ def real(summary, key):
     return None if value == "none" else float(value)
 
 
+def quotient(a, b):
+    """a / b, or None when either is None (a value a run did not reach)."""
+    return None if a is None or b is None else a / b
+
+
 def run_deck(program, deck_text_or_path, outdir, name, one_thread=False):
     """Run one deck (a path, or the text of a deck) into outdir/name;
     return its summary and the exit status.  one_thread: with
@@ -397,7 +402,7 @@ def gen_strain_gradient_study(ctx):
         cont = read_summary(os.path.join(ROOT, "docs", "validation", "continuum", base, "continuum_summary.txt"))
         neck = real(cont, "max_restraining_force_at_delta_over_h")
         tears = [real(res[f"gradient_{base}_{v:g}"], "tearing_delta_over_h") for v in GRADIENT_VALUES]
-        ratios = [None if t is None or neck is None else t / neck for t in tears]
+        ratios = [quotient(t, neck) for t in tears]
         rows.append([base, Num(neck, ".3f")] + [Num(t, ".3f") for t in tears]
                     + [Num(r, ".2f") for r in ratios] + [matching_value(GRADIENT_VALUES, tears, neck)])
     header = (["deck (stopped at tearing, 80 elements)", "continuum's neck Δ/h"]
@@ -430,13 +435,11 @@ def gen_tearing_friction(ctx):
     scripts/convergence.sh -m runs them; against the continuum's neck kept
     in docs/validation/continuum/<case>/ (the pull at its largest
     restraining force, and where its sheet necked)."""
-    base = read_doc("input/cc_fig5a_beadA_steel.nml")
+    base = read_doc(stopped_decks(ctx, "friction_decks", ["input/cc_fig5a_beadA_steel.nml"])[0])
     for old in ("friction = 0.1\n", "pull_distance = 2.286", "n_elements = 80"):
         if old not in base:
             raise RuntimeError(f"input/cc_fig5a_beadA_steel.nml: {old.strip()} expected")
     h = float(re.search(r"thickness\s*=\s*([0-9.]+)", base).group(1))
-    deck = stopped_decks(ctx, "friction_decks", ["input/cc_fig5a_beadA_steel.nml"])[0]
-    base = read_doc(deck)
     jobs = []
     for mu, _ in FRICTION_CASES:
         for n in FRICTION_ELEMENTS:
@@ -457,8 +460,9 @@ def gen_tearing_friction(ctx):
         first = res[f"friction_{mu:g}_{FRICTION_ELEMENTS[0]}"]
         rows.append(["%g" % mu, Num(neck, ".3f"), Num(continuum_neck_place(folder), ".1f")]
                     + [Num(t, ".3f") for t in tears]
-                    + [Num(None if tears[0] is None or neck is None else tears[0] / neck, ".2f"),
-                       Num(None if tears[0] is None or tears[-1] is None else 100.0 * (tears[0] / tears[-1] - 1.0), "+.1f"),
+                    + [Num(quotient(tears[0], neck), ".2f"),
+                       Num(None if quotient(tears[0], tears[-1]) is None
+                           else 100.0 * (quotient(tears[0], tears[-1]) - 1.0), "+.1f"),
                        Num(real(first, "tearing_s_over_h"), ".1f"), first.get("tearing_mesh_dependent", "none")])
     header = (["μ", "continuum's neck Δ/h", "its place s/h", "tearing Δ/h, %d elements as shipped" % FRICTION_ELEMENTS[0]]
               + ["%d elements (-m)" % n for n in FRICTION_ELEMENTS[1:]]

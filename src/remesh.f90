@@ -56,13 +56,8 @@ module remesh
    !> the split.  A clamped pull necks in material that is on that radius
    !> when the force turns toward its maximum, 1.2-2.2h before its exit
    !> (bead A and B, steel, uniform and refined meshes), or, with much
-   !> friction, in the straight sheet just past it: bead A steel with
-   !> mu = 0.2 necks 1.9-2.2h past the exit (80 elements split, 640
-   !> uniform; the split takes whole elements, so the zone reaches a
-   !> little beyond 2h there, to s = 16.25h); with 0.5h after it the
-   !> neck formed on the coarse elements beyond the zone (tearing at
-   !> 1.87h, mesh dependent), with 1.5h across the zone's end
-   !> (docs/theory.md §7.6).
+   !> friction, in the straight sheet just past it (bead A steel with
+   !> mu = 0.2: 1.9-2.2h past the exit; docs/theory.md §7.6).
    real(dp), parameter :: exit_element_over_h = 0.08_dp
    real(dp), parameter :: exit_zone_before = 3.0_dp, exit_zone_after = 2.0_dp
    !> As the pull draws coarse elements toward the exit, they are split
