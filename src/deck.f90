@@ -376,6 +376,18 @@ contains
       case ('rectangular')
          call check_real(errs, at(p, 'tools', 'r1'), d%r1, lo=0.0_dp, lo_open=.true.)
          call check_real(errs, at(p, 'tools', 'r2'), d%r2, lo=0.0_dp, lo_open=.true.)
+         ! the radii are those of the surfaces the mid-surface touches
+         ! (docs/theory.md §5): the tool's own corner, r - h/2, must exist
+         if (is_positive(d%thickness) .and. is_positive(d%r1)) then
+            if (d%r1 <= 0.5_dp*d%thickness) call fail(errs, at(p, 'tools', 'r1'), 'must be > thickness/2 = ' &
+               //num(0.5_dp*d%thickness)//': the radius the mid-surface follows, the tool''s own corner'// &
+               ' being r1 - h/2 (got '//num(d%r1)//')')
+         end if
+         if (is_positive(d%thickness) .and. is_positive(d%r2)) then
+            if (d%r2 <= 0.5_dp*d%thickness) call fail(errs, at(p, 'tools', 'r2'), 'must be > thickness/2 = ' &
+               //num(0.5_dp*d%thickness)//': the radius the mid-surface follows, the tool''s own corner'// &
+               ' being r2 - h/2 (got '//num(d%r2)//')')
+         end if
          call check_real(errs, at(p, 'tools', 'b1'), d%b1, lo=0.0_dp, lo_open=.true.)
          call check_real(errs, at(p, 'tools', 'b2'), d%b2, lo=0.0_dp, lo_open=.true.)
          call check_real(errs, at(p, 'tools', 'h1'), d%h1, lo=0.0_dp)
@@ -452,8 +464,11 @@ contains
                       //num(d%initial_increment)//' (got '//num(d%max_increment)//')')
       end if
       call check_int(errs, at(p, 'loading', 'max_iterations'), d%max_iterations, lo=2)
-      call check_real(errs, at(p, 'loading', 'tolerance'), d%tolerance, lo=0.0_dp, &
-                      hi=1.0e-2_dp, lo_open=.true., hi_open=.true.)
+      ! at least 1e-14: Newton's last correction must fall below sqrt(tol)
+      ! h, which below some 1e-7 h is round-off (a fuzzed 1e-300 never
+      ! converged)
+      call check_real(errs, at(p, 'loading', 'tolerance'), d%tolerance, lo=1.0e-14_dp, &
+                      hi=1.0e-2_dp, hi_open=.true.)
       ! below 0.1% per increment the step control would creep (a fuzzed
       ! 1e-30 ran for ever)
       call check_real(errs, at(p, 'loading', 'squeeze_force_change'), d%squeeze_force_change, &
@@ -462,6 +477,12 @@ contains
                       lo=1.0e-3_dp, hi=0.5_dp, hi_open=.true.)
       call check_real(errs, at(p, 'loading', 'step_tolerance'), d%step_tolerance, &
                       lo=0.0_dp, hi=0.5_dp, hi_open=.true.)
+      ! 0 (off) or at least 1e-6: below it the increments creep at
+      ! min_increment (a fuzzed 1e-10 would have taken hours; 1e-6 takes
+      ! fig7b 70 times its shipped time)
+      if (d%step_tolerance > 0.0_dp .and. d%step_tolerance < 1.0e-6_dp) &
+         call fail(errs, at(p, 'loading', 'step_tolerance'), 'must be 0 (off) or >= 1e-6 (got '// &
+                   num(d%step_tolerance)//')')
    end subroutine validate_deck
 
    !> check_refined_zone -- the refined zone of &sheet (refine_from,

@@ -24,7 +24,7 @@ module deck_reader
    use os, only: read_file
    use deck, only: deck_type, group_names, resolve_defaults, validate_deck, max_umat_props, &
                    max_kinematic
-   use deck_scan, only: group_text, scan_groups, split_assignments, check_repeated, clip, &
+   use deck_scan, only: group_text, scan_groups, split_assignments, check_repeated, clip, value_problem, &
                         strip_separators, is_letter
    implicit none
    private
@@ -555,24 +555,55 @@ contains
 
       if (.not. gt%present) return   ! group absent: defaults
       call check_repeated(group, gt%body, path, errs)
+      ! (a value check's error names the variable: no second, nameless one)
+      n_before = errs%count
+      call check_values(group, gt%body, path, errs)
       msg = ''
       if (gt%terminated) then
          call group_io(group, d, act_read_text, '&'//group//' '//gt%body//' /', ios, msg, lines)
          if (ios == 0) return
       else
-         ! no '/': only an old-style '&end' in the body can end the group
-         call group_io(group, d, act_read_text, '&'//group//' '//gt%body, ios, msg, lines)
-         if (ios == 0) return
+         ! the deck ends inside the group (scan_groups ends a group at '/',
+         ! '&end' and '&name')
          call add_error(errs, "deck '"//trim(path)//"', group &"//group// &
                         ": no '/' ends the group")
+         call group_io(group, d, act_read_text, '&'//group//' '//gt%body//' /', ios, msg, lines)
+         if (ios == 0) return
       end if
 
-      n_before = errs%count
       call diagnose_group(d, group, gt%body, path, errs)
       if (errs%count == n_before .and. gt%terminated) &
          call add_error(errs, "deck '"//trim(path)//"', group &"//group// &
                         ": cannot read the group ("//trim(msg)//")")
    end subroutine read_group
+
+   !> check_values -- each assignment's value as deck_scan's value_problem
+   !> sees it (a null value, a malformed number: what a namelist read
+   !> would take silently or blame on no variable), one error per variable.
+   !>
+   !> group  [in]     group name, lower case.
+   !> body   [in]     the group's text without '&group' and '/'.
+   !> path   [in]     deck name, for messages.
+   !> errs   [in,out] problems are appended.
+   subroutine check_values(group, body, path, errs)
+      character(len=*), intent(in) :: group, body, path
+      type(error_list), intent(inout) :: errs
+
+      integer, allocatable :: starts(:), eqs(:)
+      character(len=:), allocatable :: var, why
+      integer :: k, last
+
+      call split_assignments(body, starts, eqs)
+      do k = 1, size(starts)
+         last = len(body)
+         if (k < size(starts)) last = starts(k + 1) - 1
+         var = lower(trim(body(starts(k):eqs(k) - 1)))
+         if (len(var) == 0) cycle   ! diagnose_group names it
+         why = value_problem(body(eqs(k) + 1:last))
+         if (len(why) > 0) call add_error(errs, "deck '"//trim(path)//"', group &"//group// &
+                                          ", variable "//var//": "//why)
+      end do
+   end subroutine check_values
 
    !> diagnose_group -- re-read a group one assignment at a time.
    !>

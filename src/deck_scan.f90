@@ -6,14 +6,16 @@
 !>
 !> Syntax honoured: outside groups '!' starts a comment and anything but
 !> '&name' is skipped; inside a group quotes (' or ", doubled to escape) and
-!> '!' comments are honoured and an unquoted '/' ends the group.
+!> '!' comments are honoured and an unquoted '/' or '&end' (the old
+!> dialect's terminator) ends the group; an unquoted '&name' there is a
+!> group opened before the last one was closed.
 module deck_scan
    use errors, only: error_list, add_error
    use text, only: lower, itoa
    implicit none
    private
    public :: group_text, scan_groups, split_assignments, check_repeated, clip, strip_separators, &
-             is_letter
+             is_letter, value_problem
 
    !> The text of one group as found in the deck file.
    type :: group_text
@@ -31,8 +33,9 @@ contains
    !> anything else but blanks is stray text, reported with its line (the
    !> first three lines of it, then a count). Inside a group, quotes (' or
    !> ", doubled to escape) and '!' comments are honoured and an unquoted
-   !> '/' ends the group. Line ends, tabs and comments become blanks in the
-   !> body.
+   !> '/' or '&end' ends the group; an unquoted '&name' ends it too, with an
+   !> error (no '/' before it), and opens group name. Line ends, tabs and
+   !> comments become blanks in the body.
    !>
    !> text   [in]     the whole deck.
    !> path   [in]     deck name, for messages.
@@ -125,6 +128,30 @@ contains
                end if
                in_group = .false.
                i = i + 1
+               cycle
+            else if (c == '&') then
+               ! an unquoted '&' ends the group too: '&end' (the old
+               ! dialect's terminator, which gfortran's read honours: the
+               ! text after it would otherwise be read as the group's and
+               ! never checked), or '&name', a group opened before this one
+               ! was closed (an error; the new group is scanned as usual)
+               j = i + 1
+               do while (j <= n)
+                  if (.not. is_name_char(text(j:j))) exit
+                  j = j + 1
+               end do
+               if (current > 0) then
+                  found(current)%terminated = .true.
+                  found(current)%body = body(1:nb)
+               end if
+               in_group = .false.
+               if (lower(text(i + 1:j - 1)) == 'end') then
+                  i = j
+               else
+                  if (current > 0) call add_error(errs, "deck '"//trim(path)//"', group &"// &
+                                                  trim(names(current))//": no '/' ends the group before '"// &
+                                                  printable(clip(text(i:j - 1)))//"' (line "//itoa(line)//")")
+               end if
                cycle
             end if
             ! a control character separates like a blank; inside quotes a
@@ -240,6 +267,171 @@ contains
          eqs = [eqs, i]
       end do
    end subroutine split_assignments
+
+
+   !> value_problem -- what is wrong with the value of one assignment that
+   !> gfortran's namelist read does not say: a null value (nothing after
+   !> '=', an empty item between commas, 'r*' without a value, or a lone
+   !> sign or '.', which the read takes as null and so silently keeps the
+   !> default), or a number that is not one ('1e', '1.e+': the read of a
+   !> group's only assignment takes them).  Quoted text, items that start
+   !> with a letter (T, F, NaN, Inf, unquoted words: the read judges them),
+   !> '.'-logicals, signed NaN and Inf and numbers of the Fortran form
+   !> [+-](digits[.digits] | .digits)[(e|d)[+-]digits], each with an
+   !> optional 'r*' repeat count, pass.
+   !>
+   !> value  [in]  the text after '=' up to the next assignment's name
+   !>              (its one trailing ',' the separator).
+   !> Returns '' or the problem, for a message after the variable's name.
+   pure function value_problem(value) result(msg)
+      character(len=*), intent(in) :: value
+      character(len=:), allocatable :: msg
+
+      character(len=:), allocatable :: v
+      integer :: i, j, n
+      logical :: want_item
+      character(len=1) :: q
+
+      msg = ''
+      v = trim(value)
+      n = len(v)
+      ! the separator before the next name
+      if (n > 0) then
+         if (v(n:n) == ',') n = n - 1
+      end if
+      v = trim(v(1:n))
+      n = len(v)
+      if (verify(v, ' ') == 0) then
+         msg = "no value after '=' (a null value would keep the default)"
+         return
+      end if
+      want_item = .true.
+      i = 1
+      do while (i <= n)
+         if (v(i:i) == ' ') then
+            i = i + 1
+            cycle
+         end if
+         if (v(i:i) == ',') then
+            if (want_item) then
+               msg = "an empty item between commas (a null value would keep the default)"
+               return
+            end if
+            want_item = .true.
+            i = i + 1
+            cycle
+         end if
+         ! one item: quoted text, or up to the next blank or comma
+         if (v(i:i) == '"' .or. v(i:i) == "'") then
+            q = v(i:i)
+            j = i + 1
+            do while (j <= n)
+               if (v(j:j) == q) then
+                  if (j < n) then
+                     if (v(j + 1:j + 1) == q) then
+                        j = j + 2
+                        cycle
+                     end if
+                  end if
+                  exit
+               end if
+               j = j + 1
+            end do
+            i = j + 1
+         else
+            j = i
+            do while (j <= n)
+               if (v(j:j) == ' ' .or. v(j:j) == ',') exit
+               j = j + 1
+            end do
+            msg = item_problem(v(i:j - 1))
+            if (len(msg) > 0) return
+            i = j
+         end if
+         want_item = .false.
+      end do
+      if (want_item) msg = "an empty item after the last comma (a null value would keep the default)"
+   end function value_problem
+
+
+   !> item_problem -- value_problem's test of one unquoted item.
+   pure function item_problem(item) result(msg)
+      character(len=*), intent(in) :: item   !< [in] the item, no blanks or commas
+      character(len=:), allocatable :: msg
+
+      character(len=:), allocatable :: body, rest
+      integer :: k
+
+      msg = ''
+      body = item
+      k = index(body, '*')
+      if (k > 0) then
+         ! r*c: r a repeat count, c the value (none: r nulls)
+         if (k == 1 .or. verify(body(1:k - 1), '0123456789') /= 0) return
+         body = body(k + 1:)
+         if (len(body) == 0) then
+            msg = "'"//clip(item)//"' repeats a null value (it would keep the default)"
+            return
+         end if
+      end if
+      if (is_letter(body(1:1))) return
+      if (body(1:1) == '.') then
+         if (len(body) == 1) then
+            msg = "'.' alone is no value (a null value would keep the default)"
+            return
+         end if
+         if (is_letter(body(2:2))) return
+      end if
+      rest = body
+      if (rest(1:1) == '+' .or. rest(1:1) == '-') rest = rest(2:)
+      if (len(rest) == 0) then
+         msg = "a sign alone is no value (a null value would keep the default)"
+         return
+      end if
+      if (is_letter(rest(1:1))) then
+         if (lower(rest) == 'nan' .or. lower(rest) == 'inf' .or. lower(rest) == 'infinity') return
+      end if
+      if (.not. is_number(rest)) msg = "'"//clip(item)//"' is not a number"
+   end function item_problem
+
+
+   !> is_number -- digits[.digits] or .digits, then an optional exponent
+   !> (e or d, an optional sign, digits); the sign before it removed.
+   pure logical function is_number(s)
+      character(len=*), intent(in) :: s      !< [in] the text
+      integer :: i, n, nd
+      is_number = .false.
+      n = len(s)
+      i = 1
+      nd = 0
+      do while (i <= n)
+         if (s(i:i) < '0' .or. s(i:i) > '9') exit
+         i = i + 1
+         nd = nd + 1
+      end do
+      if (i <= n) then
+         if (s(i:i) == '.') then
+            i = i + 1
+            do while (i <= n)
+               if (s(i:i) < '0' .or. s(i:i) > '9') exit
+               i = i + 1
+               nd = nd + 1
+            end do
+         end if
+      end if
+      if (nd == 0) return
+      if (i > n) then
+         is_number = .true.
+         return
+      end if
+      if (index('eEdD', s(i:i)) == 0) return
+      i = i + 1
+      if (i <= n) then
+         if (s(i:i) == '+' .or. s(i:i) == '-') i = i + 1
+      end if
+      if (i > n) return
+      is_number = verify(s(i:n), '0123456789') == 0
+   end function is_number
 
 
    !> clip -- text shortened to at most 60 characters for messages.

@@ -23,7 +23,7 @@ module setup
    use friction_coulomb, only: coulomb_friction
    use friction_table, only: table_friction_of_deck
    use friction_power, only: power_friction_of_deck
-   use tools, only: tool_type, tool_sample, seg_arc
+   use tools, only: tool_type, tool_sample, seg_arc, seg_line, segment_type
    use tool_distance, only: tool_gap
    use bead_builder, only: build_rectangular_bead
    use profile_io, only: read_profile
@@ -68,8 +68,10 @@ contains
       ! the friction law's file and variables are checked with the rest
       if (d%bead /= 'none') call friction_of_deck(d, fric, errs)
       call tools_of_deck(d, deck_ok, upper, lower_tool, errs)
-      if (deck_ok .and. errs%count == 0 .and. d%bead /= 'none') &
+      if (deck_ok .and. errs%count == 0 .and. d%bead /= 'none') then
          call check_clearance(d, upper, lower_tool, errs)
+         call check_sheet_reach(d, upper, lower_tool, errs)
+      end if
       call controls_of_deck(d, ctl)
       if (errs%count > 0) return
 
@@ -277,6 +279,59 @@ contains
          end if
       end select
    end subroutine tools_of_deck
+
+   !> CHECK_SHEET_REACH: a sheet whose ends do not lie on the binder faces
+   !> is refused: an end inside the bead (a clamped edge in mid-air in the
+   !> groove, a sheet that never reaches the binder) is no drawbead.  Each
+   !> tool's binder faces are the straight level pieces at its ends (a
+   !> tool whose end piece is not level has none there, and is not
+   !> checked at that end); each end of the sheet, at +-length/2, must lie
+   !> on them at least one thickness from where they end.
+   !>  d             [in]     the deck (length, thickness)
+   !>  upper, lower  [in]     the tools at rise 0
+   !>  errs          [in,out] an error naming &sheet length is appended
+   subroutine check_sheet_reach(d, upper, lower, errs)
+      type(deck_type), intent(in) :: d
+      type(tool_type), intent(in) :: upper, lower
+      type(error_list), intent(inout) :: errs
+      real(dp) :: reach, half
+      reach = max(binder_start(upper), binder_start(lower))
+      half = 0.5_dp*d%length
+      if (half < reach + d%thickness) call add_error(errs, "deck '"//trim(d%deck_file)// &
+         "', group &sheet, variable length: the sheet's ends must lie on the binder faces, at least h"// &
+         ' past the bead (its tools leave the binder faces at |x| = '//num(reach)//' mm): length must be >= '// &
+         num(2.0_dp*(reach + d%thickness))//' (got '//num(d%length)//')')
+   contains
+      !> the largest |x| where the tool leaves its binder faces (0: no level end piece)
+      pure function binder_start(tool) result(x)
+         type(tool_type), intent(in) :: tool
+         real(dp) :: x, y0, tol
+         integer :: i
+         x = 0.0_dp
+         tol = 1.0e-9_dp*max(tool%size, 1.0_dp)
+         ! from the left end: level straight pieces at the end's height
+         y0 = tool%seg(1)%p1(2)
+         i = 1
+         do while (i <= tool%nseg)
+            if (.not. level_at(tool%seg(i), y0, tol)) exit
+            i = i + 1
+         end do
+         if (i > 1 .and. i <= tool%nseg) x = max(x, -tool%seg(i)%p1(1))
+         ! from the right end
+         y0 = tool%seg(tool%nseg)%p2(2)
+         i = tool%nseg
+         do while (i >= 1)
+            if (.not. level_at(tool%seg(i), y0, tol)) exit
+            i = i - 1
+         end do
+         if (i < tool%nseg .and. i >= 1) x = max(x, tool%seg(i)%p2(1))
+      end function binder_start
+      pure logical function level_at(sg, y0, tol)
+         type(segment_type), intent(in) :: sg
+         real(dp), intent(in) :: y0, tol
+         level_at = sg%kind == seg_line .and. abs(sg%p1(2) - y0) <= tol .and. abs(sg%p2(2) - y0) <= tol
+      end function level_at
+   end subroutine check_sheet_reach
 
    !> CHECK_CLEARANCE: tools that cannot hold the sheet at the lock depth
    !> are refused.  The tools are centreline surfaces (the physical surfaces

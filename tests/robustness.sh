@@ -22,7 +22,8 @@
 #    (issue 28, item 4; the curve and profile files: tests/bad_decks.sh);
 #  - a control character in a text value (a NUL in the title, an escape in
 #    a file name) is refused; a tab in the title reads as a blank, and so
-#    does a line end inside quotes (issue 28, item 8).
+#    does a line end inside quotes (issue 28, item 8);
+#  - groups ended by the old dialect's '&end' read as with '/'.
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -233,6 +234,24 @@ expect 1 "variable n_elements: n_elements = 20000 (20000 elements, thickness_poi
 # a large mesh runs (no stack overflow)
 printf '&sheet n_elements = 12000 /\n&loading pull_distance = 0.02 /\n' >"$work/big.nml"
 expect 0 'done, exit code 0' 'a 12000-element mesh runs' -- "$bin" "$work/big.nml" -o "$work/big"
+
+# the old dialect's group terminator '&end' reads as '/' does: the same
+# deck, the same results (before, the scan ran on to the next '/', so the
+# group after an '&end' was never read nor checked)
+sed 's|^/$|\&end|' input/fig7b_beadA_steel_mu0.nml >"$work/amp_end.nml"
+"$bin" input/fig7b_beadA_steel_mu0.nml -o "$work/slash_run" >/dev/null 2>&1
+slash_status=$?
+"$bin" "$work/amp_end.nml" -o "$work/amp_end_run" >/dev/null 2>&1
+amp_status=$?
+if grep -q '^/$' "$work/amp_end.nml" || ! grep -q '^&end$' "$work/amp_end.nml"; then
+    bad "'&end' terminators: the copy of fig7b was not made"
+elif ((slash_status == 0 && amp_status == 0)) &&
+    diff <(grep -v '^cpu_seconds' "$work/slash_run/summary.txt") \
+        <(grep -v '^cpu_seconds' "$work/amp_end_run/summary.txt") >/dev/null; then
+    ok "groups ended by '&end': the same summary as with '/'"
+else
+    bad "groups ended by '&end': exit $amp_status (with '/': $slash_status) or another summary"
+fi
 
 echo "robustness: $failures failed"
 ((failures == 0))
