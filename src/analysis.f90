@@ -173,6 +173,7 @@ contains
       call newton_solve(m, s, pr%ld, pr%kb, pr%r, ctl%max_iterations, ctl%tolerance, pr%nr, &
                         count_states=ctl%log_residuals)
       rec%newton_iterations = rec%newton_iterations + pr%nr%iterations
+      pr%row_iterations = pr%row_iterations + pr%nr%iterations
       rec%assemblies = rec%assemblies + pr%nr%assemblies
       if (pr%nr%status /= newton_ok) then
          call failed_attempt(pr, m, ctl, s, rec, outcome)
@@ -374,12 +375,13 @@ contains
                                            'at the increment where the paper''s criterion was met'// &
                                            split_note(rec, h))
       if (pr%phase == phase_lock) then
-         call write_row(out, out%lock, [pr%p/h, pr%punch/eh, pr%punch, real(pr%nr%iterations, dp), pr%dt/h, &
+         call write_row(out, out%lock, [pr%p/h, pr%punch/eh, pr%punch, real(pr%row_iterations, dp), pr%dt/h, &
                                         pr%min_ind, pr%pen, pr%reaction/eh, pr%reaction])
       else
-         call write_row(out, out%pull, [pr%p/h, pr%reaction/eh, pr%reaction, real(pr%nr%iterations, dp), &
+         call write_row(out, out%pull, [pr%p/h, pr%reaction/eh, pr%reaction, real(pr%row_iterations, dp), &
                                         pr%dt/h, pr%min_ind, pr%lift/eh, pr%lift, pr%pen, pr%punch/eh])
       end if
+      pr%row_iterations = 0
       if (snapshot_due(pr, ctl)) then
          call write_snapshot(out, m, s, pr%phase, pr%p/h, rec%increments)
          pr%next_snapshot = next_snapshot(pr%p0, pr%p, ctl%snapshot_every_over_h, h)

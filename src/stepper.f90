@@ -51,6 +51,7 @@ module stepper
       real(dp) :: h = 0.0_dp, eh = 0.0_dp    ! thickness, E h
       real(dp) :: ell = 0.0_dp               ! averaging length of the averaged-strain criterion (§7.2)
       integer :: pulled = 0                  ! the pulled dof (the right edge's v)
+      integer :: row_iterations = 0          ! Newton iterations since the last row, failed attempts included
       ! the last attempt's forces (§9): N (reaction at the pulled dof), F
       ! (the lower tool on the sheet), the lift on the upper tool, and the
       ! phase's force (F locking, N pulling); its relative change and target

@@ -23,7 +23,8 @@
 #  - a control character in a text value (a NUL in the title, an escape in
 #    a file name) is refused; a tab in the title reads as a blank, and so
 #    does a line end inside quotes (issue 28, item 8);
-#  - groups ended by the old dialect's '&end' read as with '/'.
+#  - groups ended by the old dialect's '&end' read as with '/';
+#  - lock.dat's iteration column counts failed attempts too.
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -251,6 +252,19 @@ elif ((slash_status == 0 && amp_status == 0)) &&
     ok "groups ended by '&end': the same summary as with '/'"
 else
     bad "groups ended by '&end': exit $amp_status (with '/': $slash_status) or another summary"
+fi
+
+# lock.dat's column 4 counts every attempt's iterations, failed ones
+# included: over fig7b (no split, five cutbacks) it sums to summary.txt's
+# newton_iterations (the output reference's promise; it held the converged
+# attempt's alone before)
+rows=$(awk '!/^#/ { s += $4 } END { print s + 0 }' "$work/slash_run/lock.dat")
+total=$(sed -n 's/^newton_iterations = //p' "$work/slash_run/summary.txt")
+cuts=$(sed -n 's/^cutbacks = //p' "$work/slash_run/summary.txt")
+if [[ -n $total && $rows == "$total" && ${cuts:-0} -gt 0 ]]; then
+    ok "lock.dat's newton_iterations sum to summary.txt's ($total, with $cuts cutbacks)"
+else
+    bad "lock.dat's newton_iterations sum to $rows, summary.txt has '$total' (cutbacks '$cuts')"
 fi
 
 echo "robustness: $failures failed"
