@@ -638,6 +638,91 @@ def gen_neck_cost(ctx):
     return lambda raw: out
 
 
+# issue 25's cost target: the default path (refine_exit, theory 7.6) at
+# most 1.5 times the uniform run of the commit before it
+COST_BASE_COMMIT = "3df1877"
+COST_DECKS = NECK_DECKS + ["input/cc_beadA_aluminium.nml", "input/cc_beadB_aluminium.nml",
+                           "input/cc_beadB_hss.nml", "input/cc_beadA_hss.nml"]
+
+
+def bench_row(ctx, binary, deck, threads, runs, keep):
+    """(median wall s, assemblies, status) of DECK by scripts/bench.sh --bin
+    BINARY with THREADS threads and RUNS runs, the runs kept under KEEP
+    (KEEP/<deck>/t<threads>/run<k>)."""
+    out = script_output(ctx, ["scripts/bench.sh", "--bin", binary, "-n", str(runs), "--threads", str(threads),
+                              "--no-scaling", "--keep", keep, deck])
+    name = os.path.basename(deck)[:-4]
+    for line in out.splitlines():
+        w = line.split()
+        if w and w[0] == name:
+            return float(w[2]), int(w[8]), w[12]
+    raise RuntimeError(f"scripts/bench.sh printed no row for {name}")
+
+
+def phase_iterations(run):
+    """Newton iterations (failed attempts included: column 4 of lock.dat and
+    pull.dat) of a run while locking, while pulling up to its tearing point
+    (tearing_delta_over_h; all of the pull without one) and past it."""
+    h = real(read_summary(os.path.join(run, "summary.txt")), "tearing_delta_over_h")
+    counts = [0, 0, 0]
+    for name, k in (("lock.dat", 0), ("pull.dat", 1)):
+        path = os.path.join(run, name)
+        if not os.path.exists(path):
+            continue
+        with open(path, encoding="utf-8") as f:
+            for line in f:
+                if line.startswith("#") or not line.strip():
+                    continue
+                w = line.split()
+                past = k == 1 and h is not None and float(w[0]) > h
+                counts[2 if past else k] += int(float(w[3]))
+    return counts
+
+
+def gen_default_path_cost(ctx):
+    """docs/performance.md: the default path's wall time against the uniform
+    run of commit COST_BASE_COMMIT (before refine_exit), whose binary is
+    built here from the repository's history (git archive, make): the
+    clamped continuum-check decks stopped at tearing and
+    input/double_bead.nml, scripts/bench.sh --bin on each binary, five runs,
+    2 threads and 1, the two binaries one after the other deck by deck (so
+    that both see the same load); medians, assemblies and their ratio."""
+    base = os.path.join(ctx.tmp, "cost_base")
+    os.makedirs(base, exist_ok=True)
+    archive = subprocess.run(["git", "archive", COST_BASE_COMMIT], cwd=ROOT, stdout=subprocess.PIPE, check=True)
+    subprocess.run(["tar", "-x", "-C", base], input=archive.stdout, check=True)
+    subprocess.run(["make", "-s", "all"], cwd=base, stdout=subprocess.DEVNULL, check=True)
+    base_bin = os.path.join(base, "bin", "drawbead")
+    decks = stopped_decks(ctx, "default_path_cost_decks", COST_DECKS) + ["input/double_bead.nml"]
+    host = script_output(ctx, ["scripts/bench.sh", "--bin", ctx.program, "-n", "1", "--threads", "1",
+                               "--no-scaling", "input/fig7b_beadA_steel_mu0.nml"])
+    host = next(ln[2:] for ln in host.splitlines() if ln.startswith("# host:"))
+    rows, phases = [], []
+    keep_base, keep_now = os.path.join(ctx.tmp, "cost_runs_base"), os.path.join(ctx.tmp, "cost_runs_now")
+    for threads in (2, 1):
+        for deck in decks:
+            tb, ab, _ = bench_row(ctx, base_bin, deck, threads, 5, keep_base)
+            td, ad, status = bench_row(ctx, ctx.program, deck, threads, 5, keep_now)
+            name = os.path.basename(deck)[:-4]
+            rows.append([name, threads, Num(tb, ".3f"), ab, Num(td, ".3f"), ad,
+                         Num(td / tb, ".2f"), Num(ad / ab, ".2f"), status])
+            if threads == 1:
+                pb = phase_iterations(os.path.join(keep_base, name, "t1", "run1"))
+                pn = phase_iterations(os.path.join(keep_now, name, "t1", "run1"))
+                phases.append([name] + [f"{a} / {b}" for a, b in zip(pb, pn)])
+    header = ["deck", "threads", f"uniform ({COST_BASE_COMMIT}), s", "assemblies", "default path, s",
+              "assemblies", "time ratio", "assemblies ratio", "status"]
+    align = ["---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---"]
+    pheader = ["deck", "locking", "pulling to the tearing point", "pulling past it (to its confirmation)"]
+
+    def text(raw):
+        return "\n".join([f"<!-- {host} -->", "", markdown_table(header, align, rows, raw), "",
+                          f"Newton iterations (failed attempts included), uniform ({COST_BASE_COMMIT}) / "
+                          "default path:", "",
+                          markdown_table(pheader, ["---", "---:", "---:", "---:"], phases, raw)])
+    return text
+
+
 def gen_bead_cards(ctx):
     """docs/user-guide.md: the worked example of an equivalent bead: a
     lock_depth sweep of fig9c, scripts/bead_curves.sh on it, its
@@ -962,6 +1047,9 @@ GENERATORS = {
     "neck_cost": ("docs/performance.md", gen_neck_cost,
                   "scripts/bench.sh on the clamped cc_ steel decks stopped at tearing: uniform, default path, refine_neck"
                   " (not checkable)"),
+    "default_path_cost": ("docs/performance.md", gen_default_path_cost,
+                          f"scripts/bench.sh on the clamped cc_ decks stopped at tearing and double_bead,"
+                          f" this version against {COST_BASE_COMMIT}'s uniform run (not checkable)"),
     "laws_cost": ("docs/performance.md", gen_laws_cost,
                   "scripts/bench.sh on cc_fig5a with the J2 law, combined hardening with and without"
                   " back stresses, and mu(p) (not checkable)"),
@@ -979,7 +1067,7 @@ GENERATORS = {
                          "scripts/sweep.sh over lock_depth and scripts/bead_curves.sh on the free bead A with three laws"),
     "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5: 1 and 2 threads, scaling (not checkable)"),
 }
-UNCHECKABLE = {"bench", "contact_cost", "neck_cost", "laws_cost"}
+UNCHECKABLE = {"bench", "contact_cost", "neck_cost", "laws_cost", "default_path_cost"}
 
 
 # ---------------------------------------------------------------------------
