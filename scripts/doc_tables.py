@@ -661,8 +661,9 @@ def bench_row(ctx, binary, deck, threads, runs, keep):
 
 def phase_iterations(run):
     """Newton iterations (failed attempts included: column 4 of lock.dat and
-    pull.dat) of a run while locking, while pulling up to its tearing point
-    (tearing_delta_over_h; all of the pull without one) and past it."""
+    pull.dat, since commit 4244918) of a run while locking, while pulling up
+    to its tearing point (tearing_delta_over_h; all of the pull without
+    one) and past it."""
     h = real(read_summary(os.path.join(run, "summary.txt")), "tearing_delta_over_h")
     counts = [0, 0, 0]
     for name, k in (("lock.dat", 0), ("pull.dat", 1)):
@@ -686,7 +687,9 @@ def gen_default_path_cost(ctx):
     clamped continuum-check decks stopped at tearing and
     input/double_bead.nml, scripts/bench.sh --bin on each binary, five runs,
     2 threads and 1, the two binaries one after the other deck by deck (so
-    that both see the same load); medians, assemblies and their ratio."""
+    that both see the same load); medians, assemblies and their ratio; and
+    the default path's Newton iterations by phase (phase_iterations) and
+    in its splits' re-equilibration (the rest of summary.txt's)."""
     base = os.path.join(ctx.tmp, "cost_base")
     os.makedirs(base, exist_ok=True)
     archive = subprocess.run(["git", "archive", COST_BASE_COMMIT], cwd=ROOT, stdout=subprocess.PIPE, check=True)
@@ -707,19 +710,20 @@ def gen_default_path_cost(ctx):
             rows.append([name, threads, Num(tb, ".3f"), ab, Num(td, ".3f"), ad,
                          Num(td / tb, ".2f"), Num(ad / ab, ".2f"), status])
             if threads == 1:
-                pb = phase_iterations(os.path.join(keep_base, name, "t1", "run1"))
-                pn = phase_iterations(os.path.join(keep_now, name, "t1", "run1"))
-                phases.append([name] + [f"{a} / {b}" for a, b in zip(pb, pn)])
+                run = os.path.join(keep_now, name, "t1", "run1")
+                pn = phase_iterations(run)
+                total = int(float(read_summary(os.path.join(run, "summary.txt"))["newton_iterations"]))
+                phases.append([name] + pn + [total - sum(pn), total])
     header = ["deck", "threads", f"uniform ({COST_BASE_COMMIT}), s", "assemblies", "default path, s",
               "assemblies", "time ratio", "assemblies ratio", "status"]
     align = ["---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---"]
-    pheader = ["deck", "locking", "pulling to the tearing point", "pulling past it (to its confirmation)"]
+    pheader = ["deck", "locking", "pulling to the tearing point", "pulling past it (to its confirmation)",
+               "re-equilibrating the splits", "in all"]
 
     def text(raw):
         return "\n".join([f"<!-- {host} -->", "", markdown_table(header, align, rows, raw), "",
-                          f"Newton iterations (failed attempts included), uniform ({COST_BASE_COMMIT}) / "
-                          "default path:", "",
-                          markdown_table(pheader, ["---", "---:", "---:", "---:"], phases, raw)])
+                          "The default path's Newton iterations (failed attempts included), one thread:", "",
+                          markdown_table(pheader, ["---"] + ["---:"] * 5, phases, raw)])
     return text
 
 
