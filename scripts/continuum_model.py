@@ -5,6 +5,7 @@ Usage:
     continuum_model.py RUN_LOG OUT_DIR [--through N] [--per-h M]
                        [--initial-inc T] [--max-inc T] [--min-inc T]
                        [--output-every T] [--contact-slope K] [--pull-step]
+                       [--pull-steps N]
 
 RUN_LOG   the standard output of bin/drawbead on the deck: its "resolved input"
           namelist echo (every variable, defaults filled in, checked by the
@@ -42,6 +43,14 @@ Options:
                      pinched over tens of h between closed binder faces, the
                      first pull increment then never converges
                      (docs/continuum-check.md, "Long sheets")
+    --pull-steps N   the pull as N *STATIC steps of equal time after the
+                     lock's (N >= 1; 1 is --pull-step), with a restart
+                     record written at the end of every step
+                     (*RESTART, WRITE: continuum.rout, about 30 MB per step
+                     on the exit-state sheets): a run stopped in the pull
+                     (an hours-long one, killed) can go on from the last
+                     step it finished (docs/continuum-check.md, "Long
+                     sheets")
 
 The model (docs/continuum-check.md): the sheet is a rectangle [-L, L] x
 [-h/2, h/2] of CPE8R elements, thickness 1 mm (forces per mm width). The
@@ -475,10 +484,13 @@ def write_lines(f, items, per_line=8):
 
 
 def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope=CONTACT_SLOPE,
-          pull_step=False):
+          pull_step=False, pull_steps=1):
     """Write OUT_DIR/continuum.inp and continuum_model.json for the case;
     slope: the contact's pressure-overclosure slope, MPa/mm (the stick slope
-    is STICK_RATIO times it)."""
+    is STICK_RATIO times it); pull_step: the pull a step of its own,
+    pull_steps > 1: the pull in that many steps with restart records."""
+    if pull_steps > 1:
+        pull_step = True
     deck = nml.get('_deck', '?')
     sheet, mat, tools, load = nml['sheet'], nml['material'], nml['tools'], nml['loading']
     sheet_material, kinematic_c = material_cards(deck, mat)
@@ -690,8 +702,20 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope
             f.write('*NODE PRINT, NSET=%s, TOTALS=ONLY, TIME POINTS=TP\nRF\n' % name)
         f.write('*NODE PRINT, NSET=NSTRAIN\nU\n')
         f.write('*EL PRINT, ELSET=SHEET\nPEEQ\n')
+        if two and pull_steps > 1:
+            # a restart record at the end of every step (the request holds
+            # for the steps after this one; docs/continuum-check.md, "Long sheets")
+            f.write('*RESTART, WRITE, FREQUENCY=1\n')
         f.write('*END STEP\n')
-        if two:
+        if two and pull_steps > 1:
+            # the pull in pull_steps steps of equal time, each starting
+            # afresh from inc0 (the loads in total time)
+            for _ in range(pull_steps):
+                f.write('*STEP, NLGEOM, INC=100000\n*STATIC\n%.6g, %.6g, %.6g, %.6g\n'
+                        % (inc0, 1.0 / pull_steps, inc_min, inc_max))
+                f.write(controls)
+                f.write('*END STEP\n')
+        elif two:
             # the pull as a step of its own: CalculiX starts it without
             # extrapolating the lock's last increment (the tools stop, the
             # edge starts), from the first increment inc0 again
@@ -717,6 +741,8 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope
     }
     if pull_step:
         info['pull_step'] = True
+    if pull_steps > 1:
+        info['pull_steps'] = pull_steps
     with open(os.path.join(out_dir, 'continuum_model.json'), 'w') as f:
         json.dump(info, f)
     return path
@@ -741,7 +767,7 @@ def main(argv):
     args, opts = [], {'--through': 4, '--per-h': 4, '--initial-inc': 0.01,
                       '--max-inc': 0.02, '--min-inc': 1e-7, '--output-every': 0.0,
                       '--contact-slope': CONTACT_SLOPE,
-                      '--pull-step': False}
+                      '--pull-step': False, '--pull-steps': 1}
     i = 0
     while i < len(argv):
         a = argv[i]
@@ -768,6 +794,8 @@ def main(argv):
         fail('--through needs an even number >= 2 (the mid-surface is a row of nodes)')
     if opts['--per-h'] < 1:
         fail('--per-h needs a positive integer')
+    if opts['--pull-steps'] < 1:
+        fail('--pull-steps needs a positive integer')
     if not opts['--contact-slope'] > 0 or math.isinf(opts['--contact-slope']):
         fail('--contact-slope needs a positive number of MPa/mm, not %r' % opts['--contact-slope'])
     try:
@@ -780,7 +808,7 @@ def main(argv):
     os.makedirs(args[1], exist_ok=True)
     build(nml, args[1], opts['--through'], opts['--per-h'], opts['--initial-inc'],
           opts['--max-inc'], opts['--min-inc'], opts['--output-every'] or opts['--max-inc'],
-          opts['--contact-slope'], opts['--pull-step'])
+          opts['--contact-slope'], opts['--pull-step'], opts['--pull-steps'])
     return 0
 
 

@@ -44,6 +44,11 @@
 #                     (scripts/continuum_model.py --pull-step): the long
 #                     exit-state sheets stop at the start of the pull
 #                     without it (docs/continuum-check.md, "Long sheets")
+#   --pull-steps N    the pull as N steps with a restart record at each
+#                     step's end (continuum_model.py --pull-steps): a run
+#                     stopped in the pull can go on from the last step it
+#                     finished (docs/continuum-check.md, "Long sheets"),
+#                     then this script with --ccx DIR/ccx
 #   --bin PATH        the program to run (default bin/drawbead, built first)
 #   -h, --help        this help
 #
@@ -123,7 +128,7 @@ while (($# > 0)); do
             model_opts+=(--pull-step)
             shift
             ;;
-        --through | --per-h | --initial-inc | --max-inc | --min-inc | --output-every | --contact-slope)
+        --through | --per-h | --initial-inc | --max-inc | --min-inc | --output-every | --contact-slope | --pull-steps)
             need_value 'a number' "$@"
             model_option "$1" "$2"
             shift 2

@@ -89,7 +89,7 @@ check_count() {
 # numbers), checked and appended to the caller's array model_opts
 model_option() {
     case $1 in
-        --through | --per-h) check_count "$1" "$2" ;;
+        --through | --per-h | --pull-steps) check_count "$1" "$2" ;;
         *) [[ $2 =~ ^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$ ]] || die "$1 needs a positive number, not '$2'" ;;
     esac
     model_opts+=("$1" "$2")

@@ -23,7 +23,8 @@
 #      face nodes
 #   e) usage errors: no deck, --ccx and --continuum together (exit 2)
 #   f) scripts/continuum_model.py --pull-step (the pull as a step of its
-#      own) against the one-step model of the same run
+#      own) against the one-step model of the same run, and --pull-steps 3
+#      (the pull in three steps with restart records) against --pull-step
 #   g) bead B (input/exit_fig9d_beadB_steel_free.nml) against its kept
 #      continuum exit state: thickness and middle within the targets, the
 #      faces 12-15% high (the 10% target is missed), held at 18%
@@ -186,6 +187,25 @@ check "--pull-step: two steps, the lock's ending at time 1, ALOCK, APULL and the
         grep -A1 -m1 '^\*STATIC' '$tmp/two/continuum.inp' | grep -q '^0.01, 1, '"
 check "--pull-step changes nothing else (the diff: the three cards, the first step's end, the second step)" \
     bash -c "test \$(diff '$tmp/one/continuum.inp' '$tmp/two/continuum.inp' | grep -c '^<') -eq 4"
+# --pull-steps 3: the pull in three steps of a third each, a restart record
+# asked for at the end of every step, each pull step as --pull-step's but
+# for its time, nothing else changed; the json says so; 0 is refused
+python3 scripts/continuum_model.py "$tmp/run/program/run.log" "$tmp/three" --pull-steps 3
+check "--pull-steps 3: exit status 0 ($?)" test $? -eq 0
+check "--pull-steps 3: four steps, *RESTART, WRITE once, in the first, three pull steps of time 1/3" \
+    bash -c "test \$(grep -c '^\*STEP' '$tmp/three/continuum.inp') -eq 4 &&
+        test \$(grep -c '^\*RESTART, WRITE, FREQUENCY=1$' '$tmp/three/continuum.inp') -eq 1 &&
+        awk '/^\*RESTART/ { r = NR } /^\*END STEP/ && !e { e = NR } END { exit !(r && r == e - 1) }' '$tmp/three/continuum.inp' &&
+        test \$(grep -A1 '^\*STATIC' '$tmp/three/continuum.inp' | grep -c '^0.01, 0.333333, ') -eq 3"
+check "--pull-steps 3 differs from --pull-step by the restart request and the pull steps only" \
+    bash -c "diff <(sed '/^\*RESTART/d' '$tmp/three/continuum.inp' | awk '/^\*STEP/ { n++ } n < 2') \
+        <(awk '/^\*STEP/ { n++ } n < 2' '$tmp/two/continuum.inp') >/dev/null &&
+        diff <(awk '/^\*STEP/ { n++ } n == 2' '$tmp/three/continuum.inp' | sed 's/^0.01, 0.333333, /0.01, 1., /') \
+        <(awk '/^\*STEP/ { n++ } n == 2' '$tmp/two/continuum.inp') >/dev/null"
+check "--pull-steps 3: continuum_model.json has pull_steps = 3" \
+    python3 -c "import json, sys; sys.exit(json.load(open('$tmp/three/continuum_model.json')).get('pull_steps') != 3)"
+python3 scripts/continuum_model.py "$tmp/run/program/run.log" "$tmp/zero" --pull-steps 0 2>/dev/null
+check "--pull-steps 0: exit 2 ($?)" test $? -eq 2
 
 # g) bead B (input/exit_fig9d_beadB_steel_free.nml, 140h pulled 48h, about
 # 8 s) against its kept continuum exit state (the pull a step of its own,
