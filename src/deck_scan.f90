@@ -374,7 +374,8 @@ contains
             return
          end if
       end if
-      if (is_letter(body(1:1))) return
+      ! a letter, or a quote after a repeat count (3*'text')
+      if (is_letter(body(1:1)) .or. body(1:1) == '"' .or. body(1:1) == "'") return
       if (body(1:1) == '.') then
          if (len(body) == 1) then
             msg = "'.' alone is no value (a null value would keep the default)"
