@@ -488,8 +488,9 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope
     """Write OUT_DIR/continuum.inp and continuum_model.json for the case;
     slope: the contact's pressure-overclosure slope, MPa/mm (the stick slope
     is STICK_RATIO times it); pull_step: the pull a step of its own,
-    pull_steps > 1: the pull in that many steps with restart records."""
-    if pull_steps > 1:
+    pull_steps: 1 the same, more: the pull in that many steps with restart
+    records."""
+    if pull_steps >= 1:
         pull_step = True
     deck = nml.get('_deck', '?')
     sheet, mat, tools, load = nml['sheet'], nml['material'], nml['tools'], nml['loading']
@@ -711,7 +712,8 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope
             # the pull in pull_steps steps of equal time, each starting
             # afresh from inc0 (the loads in total time)
             for _ in range(pull_steps):
-                f.write('*STEP, NLGEOM, INC=100000\n*STATIC\n%.6g, %.6g, %.6g, %.6g\n'
+                # (the period in full: the steps' times add up to 1)
+                f.write('*STEP, NLGEOM, INC=100000\n*STATIC\n%.6g, %.17g, %.6g, %.6g\n'
                         % (inc0, 1.0 / pull_steps, inc_min, inc_max))
                 f.write(controls)
                 f.write('*END STEP\n')
@@ -741,7 +743,7 @@ def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope
     }
     if pull_step:
         info['pull_step'] = True
-    if pull_steps > 1:
+    if pull_steps > 1 and pull != 0.0:
         info['pull_steps'] = pull_steps
     with open(os.path.join(out_dir, 'continuum_model.json'), 'w') as f:
         json.dump(info, f)
@@ -767,7 +769,7 @@ def main(argv):
     args, opts = [], {'--through': 4, '--per-h': 4, '--initial-inc': 0.01,
                       '--max-inc': 0.02, '--min-inc': 1e-7, '--output-every': 0.0,
                       '--contact-slope': CONTACT_SLOPE,
-                      '--pull-step': False, '--pull-steps': 1}
+                      '--pull-step': False, '--pull-steps': 0}
     i = 0
     while i < len(argv):
         a = argv[i]
@@ -794,7 +796,7 @@ def main(argv):
         fail('--through needs an even number >= 2 (the mid-surface is a row of nodes)')
     if opts['--per-h'] < 1:
         fail('--per-h needs a positive integer')
-    if opts['--pull-steps'] < 1:
+    if '--pull-steps' in argv and opts['--pull-steps'] < 1:
         fail('--pull-steps needs a positive integer')
     if not opts['--contact-slope'] > 0 or math.isinf(opts['--contact-slope']):
         fail('--contact-slope needs a positive number of MPa/mm, not %r' % opts['--contact-slope'])

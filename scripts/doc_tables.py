@@ -38,6 +38,7 @@ import re
 import subprocess
 import sys
 import tempfile
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DOCS = ["README.md"] + sorted(
@@ -663,7 +664,8 @@ def phase_iterations(run):
     """Newton iterations (failed attempts included: column 4 of lock.dat and
     pull.dat, since commit 4244918) of a run while locking, while pulling up
     to its tearing point (tearing_delta_over_h; all of the pull without
-    one) and past it."""
+    one) and past it.  Not in them: a split's re-equilibration, and the
+    failed attempts that end a run without convergence."""
     h = real(read_summary(os.path.join(run, "summary.txt")), "tearing_delta_over_h")
     counts = [0, 0, 0]
     for name, k in (("lock.dat", 0), ("pull.dat", 1)):
@@ -697,9 +699,11 @@ def gen_default_path_cost(ctx):
     subprocess.run(["make", "-s", "all"], cwd=base, stdout=subprocess.DEVNULL, check=True)
     base_bin = os.path.join(base, "bin", "drawbead")
     decks = stopped_decks(ctx, "default_path_cost_decks", COST_DECKS) + ["input/double_bead.nml"]
-    host = script_output(ctx, ["scripts/bench.sh", "--bin", ctx.program, "-n", "1", "--threads", "1",
-                               "--no-scaling", "input/fig7b_beadA_steel_mu0.nml"])
-    host = next(ln[2:] for ln in host.splitlines() if ln.startswith("# host:"))
+    probe = script_output(ctx, ["scripts/bench.sh", "--bin", ctx.program, "-n", "1", "--threads", "1",
+                                "--no-scaling", "input/fig7b_beadA_steel_mu0.nml"])
+    machine = next(ln[2:] for ln in probe.splitlines() if ln.startswith("# host:")).split(", load average")[0]
+    with open("/proc/loadavg", encoding="utf-8") as f:
+        load_before = " ".join(f.read().split()[:3])
     rows, phases = [], []
     keep_base, keep_now = os.path.join(ctx.tmp, "cost_runs_base"), os.path.join(ctx.tmp, "cost_runs_now")
     for threads in (2, 1):
@@ -718,7 +722,12 @@ def gen_default_path_cost(ctx):
               "assemblies", "time ratio", "assemblies ratio", "status"]
     align = ["---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---"]
     pheader = ["deck", "locking", "pulling to the tearing point", "pulling past it (to its confirmation)",
-               "re-equilibrating the splits", "in all"]
+               "in no row (the splits' re-equilibration)", "in all"]
+
+    with open("/proc/loadavg", encoding="utf-8") as f:
+        load_after = " ".join(f.read().split()[:3])
+    host = (f"{machine}, load average {load_before} before the runs, {load_after} after them"
+            f" (their own included), {time.strftime('%Y-%m-%d %H:%M')}")
 
     def text(raw):
         return "\n".join([f"<!-- {host} -->", "", markdown_table(header, align, rows, raw), "",

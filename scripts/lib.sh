@@ -84,9 +84,9 @@ check_count() {
 }
 
 # model_option OPTION VALUE: one option of the continuum model
-# (scripts/continuum_model.py: --through and --per-h counts, --initial-inc,
-# --max-inc, --min-inc, --output-every and --contact-slope positive
-# numbers), checked and appended to the caller's array model_opts
+# (scripts/continuum_model.py: --through, --per-h and --pull-steps counts,
+# --initial-inc, --max-inc, --min-inc, --output-every and --contact-slope
+# positive numbers), checked and appended to the caller's array model_opts
 model_option() {
     case $1 in
         --through | --per-h | --pull-steps) check_count "$1" "$2" ;;

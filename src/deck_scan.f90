@@ -6,9 +6,9 @@
 !>
 !> Syntax honoured: outside groups '!' starts a comment and anything but
 !> '&name' is skipped; inside a group quotes (' or ", doubled to escape) and
-!> '!' comments are honoured and an unquoted '/' or '&end' (the old
-!> dialect's terminator) ends the group; an unquoted '&name' there is a
-!> group opened before the last one was closed.
+!> '!' comments are honoured and an unquoted '/', '&end' or '$end' (the
+!> old dialects' terminators) ends the group; an unquoted '&name' there is
+!> a group opened before the last one was closed.
 module deck_scan
    use errors, only: error_list, add_error
    use text, only: lower, itoa
@@ -33,7 +33,7 @@ contains
    !> anything else but blanks is stray text, reported with its line (the
    !> first three lines of it, then a count). Inside a group, quotes (' or
    !> ", doubled to escape) and '!' comments are honoured and an unquoted
-   !> '/' or '&end' ends the group; an unquoted '&name' ends it too, with an
+   !> '/', '&end' or '$end' ends the group; an unquoted '&name' ends it too, with an
    !> error (no '/' before it), and opens group name. Line ends, tabs and
    !> comments become blanks in the body.
    !>
@@ -128,6 +128,16 @@ contains
                end if
                in_group = .false.
                i = i + 1
+               cycle
+            else if (c == '$' .and. lower(text(i + 1:min(i + 3, n))) == 'end') then
+               ! '$end': another old dialect's terminator, which gfortran's
+               ! read honours too
+               if (current > 0) then
+                  found(current)%terminated = .true.
+                  found(current)%body = body(1:nb)
+               end if
+               in_group = .false.
+               i = i + 4
                cycle
             else if (c == '&') then
                ! an unquoted '&' ends the group too: '&end' (the old
@@ -276,9 +286,8 @@ contains
    !> default), or a number that is not one ('1e', '1.e+': the read of a
    !> group's only assignment takes them).  Quoted text, items that start
    !> with a letter (T, F, NaN, Inf, unquoted words: the read judges them),
-   !> '.'-logicals, signed NaN and Inf and numbers of the Fortran form
-   !> [+-](digits[.digits] | .digits)[(e|d)[+-]digits], each with an
-   !> optional 'r*' repeat count, pass.
+   !> '.t' and '.f' logicals, signed NaN and Inf and numbers of the Fortran
+   !> form (is_number), each with an optional 'r*' repeat count, pass.
    !>
    !> value  [in]  the text after '=' up to the next assignment's name
    !>              (its one trailing ',' the separator).
@@ -381,7 +390,8 @@ contains
             msg = "'.' alone is no value (a null value would keep the default)"
             return
          end if
-         if (is_letter(body(2:2))) return
+         ! .t..., .f...: a logical (the read judges the rest)
+         if (index('tTfF', body(2:2)) > 0) return
       end if
       rest = body
       if (rest(1:1) == '+' .or. rest(1:1) == '-') rest = rest(2:)
@@ -392,12 +402,18 @@ contains
       if (is_letter(rest(1:1))) then
          if (lower(rest) == 'nan' .or. lower(rest) == 'inf' .or. lower(rest) == 'infinity') return
       end if
-      if (.not. is_number(rest)) msg = "'"//clip(item)//"' is not a number"
+      if (.not. is_number(rest)) then
+         msg = "'"//clip(item)//"' is not a number"
+         ! letters other than an exponent's: text, which must be quoted
+         if (scan(lower(rest), 'abcfghijklmnoprstuvwxyz') > 0) msg = msg//' (text values must be in quotes)'
+      end if
    end function item_problem
 
 
-   !> is_number -- digits[.digits] or .digits, then an optional exponent
-   !> (e or d, an optional sign, digits); the sign before it removed.
+   !> is_number -- digits[.[digits]] or .digits, then an optional exponent:
+   !> e, d or q (any case) with an optional sign, or a sign alone, then
+   !> digits (gfortran reads 548.0+0 as 548 and 1.0-3 as 1e-3); the sign
+   !> before the number removed.
    pure logical function is_number(s)
       character(len=*), intent(in) :: s      !< [in] the text
       integer :: i, n, nd
@@ -425,10 +441,15 @@ contains
          is_number = .true.
          return
       end if
-      if (index('eEdD', s(i:i)) == 0) return
-      i = i + 1
-      if (i <= n) then
-         if (s(i:i) == '+' .or. s(i:i) == '-') i = i + 1
+      if (index('eEdDqQ', s(i:i)) > 0) then
+         i = i + 1
+         if (i <= n) then
+            if (s(i:i) == '+' .or. s(i:i) == '-') i = i + 1
+         end if
+      else if (s(i:i) == '+' .or. s(i:i) == '-') then
+         i = i + 1
+      else
+         return
       end if
       if (i > n) return
       is_number = verify(s(i:n), '0123456789') == 0

@@ -196,16 +196,18 @@ check "--pull-steps 3: four steps, *RESTART, WRITE once, in the first, three pul
     bash -c "test \$(grep -c '^\*STEP' '$tmp/three/continuum.inp') -eq 4 &&
         test \$(grep -c '^\*RESTART, WRITE, FREQUENCY=1$' '$tmp/three/continuum.inp') -eq 1 &&
         awk '/^\*RESTART/ { r = NR } /^\*END STEP/ && !e { e = NR } END { exit !(r && r == e - 1) }' '$tmp/three/continuum.inp' &&
-        test \$(grep -A1 '^\*STATIC' '$tmp/three/continuum.inp' | grep -c '^0.01, 0.333333, ') -eq 3"
+        test \$(grep -A1 '^\*STATIC' '$tmp/three/continuum.inp' | grep -c '^0.01, 0.33333333333333331, ') -eq 3"
 check "--pull-steps 3 differs from --pull-step by the restart request and the pull steps only" \
     bash -c "diff <(sed '/^\*RESTART/d' '$tmp/three/continuum.inp' | awk '/^\*STEP/ { n++ } n < 2') \
         <(awk '/^\*STEP/ { n++ } n < 2' '$tmp/two/continuum.inp') >/dev/null &&
-        diff <(awk '/^\*STEP/ { n++ } n == 2' '$tmp/three/continuum.inp' | sed 's/^0.01, 0.333333, /0.01, 1., /') \
+        diff <(awk '/^\*STEP/ { n++ } n == 2' '$tmp/three/continuum.inp' | sed 's/^0.01, 0.33333333333333331, /0.01, 1., /') \
         <(awk '/^\*STEP/ { n++ } n == 2' '$tmp/two/continuum.inp') >/dev/null"
 check "--pull-steps 3: continuum_model.json has pull_steps = 3" \
     python3 -c "import json, sys; sys.exit(json.load(open('$tmp/three/continuum_model.json')).get('pull_steps') != 3)"
 python3 scripts/continuum_model.py "$tmp/run/program/run.log" "$tmp/zero" --pull-steps 0 2>/dev/null
 check "--pull-steps 0: exit 2 ($?)" test $? -eq 2
+python3 scripts/continuum_model.py "$tmp/run/program/run.log" "$tmp/one_step" --pull-steps 1
+check "--pull-steps 1 is --pull-step (the same input)" cmp -s "$tmp/one_step/continuum.inp" "$tmp/two/continuum.inp"
 
 # g) bead B (input/exit_fig9d_beadB_steel_free.nml, 140h pulled 48h, about
 # 8 s) against its kept continuum exit state (the pull a step of its own,
