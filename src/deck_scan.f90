@@ -121,23 +121,11 @@ contains
                nb = nb + 1
                body(nb:nb) = ' '
                cycle
-            else if (c == '/') then
-               if (current > 0) then
-                  found(current)%terminated = .true.
-                  found(current)%body = body(1:nb)
-               end if
-               in_group = .false.
-               i = i + 1
-               cycle
-            else if (c == '$' .and. lower(text(i + 1:min(i + 3, n))) == 'end') then
-               ! '$end': another old dialect's terminator, which gfortran's
-               ! read honours too
-               if (current > 0) then
-                  found(current)%terminated = .true.
-                  found(current)%body = body(1:nb)
-               end if
-               in_group = .false.
-               i = i + 4
+            else if (c == '/' .or. (c == '$' .and. lower(text(i + 1:min(i + 3, n))) == 'end')) then
+               ! '/', or '$end' (another old dialect's terminator, which
+               ! gfortran's read honours too)
+               call close_group()
+               i = i + merge(1, 4, c == '/')
                cycle
             else if (c == '&') then
                ! an unquoted '&' ends the group too: '&end' (the old
@@ -150,11 +138,7 @@ contains
                   if (.not. is_name_char(text(j:j))) exit
                   j = j + 1
                end do
-               if (current > 0) then
-                  found(current)%terminated = .true.
-                  found(current)%body = body(1:nb)
-               end if
-               in_group = .false.
+               call close_group()
                if (lower(text(i + 1:j - 1)) == 'end') then
                   i = j
                else
@@ -179,6 +163,15 @@ contains
       do g = 1, size(found)
          if (.not. allocated(found(g)%body)) found(g)%body = ''
       end do
+   contains
+      !> the open group ends here: its body so far, terminated
+      subroutine close_group()
+         if (current > 0) then
+            found(current)%terminated = .true.
+            found(current)%body = body(1:nb)
+         end if
+         in_group = .false.
+      end subroutine close_group
    end subroutine scan_groups
 
 
