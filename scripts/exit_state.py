@@ -228,11 +228,13 @@ def extract(ccx_dir, out_file, s_over_h, band):
     with open(out_file, 'w') as f:
         f.write('# drawbead exit state: the CalculiX continuum (scripts/exit_state.py extract)\n')
         f.write('# deck %s: %s\n' % (info['deck'], info['title']))
+        steps = ((', the pull in %d steps' % info['pull_steps']) if info.get('pull_steps')
+                 else ', the pull a step of its own' if info.get('pull_step') else '')
+        if info.get('resumed_after_step'):
+            steps += ', resumed after step %d (scripts/ccx_resume.py)' % info['resumed_after_step']
         f.write('# mesh = %d x %d CPE8R (%d per h along, %d through the thickness), '
                 'contact slope %g MPa/mm%s\n'
-                % (nx, ny, info['per_h'], ny, info['contact_slope'],
-                   (', the pull in %d steps' % info['pull_steps']) if info.get('pull_steps')
-                   else ', the pull a step of its own' if info.get('pull_step') else ''))
+                % (nx, ny, info['per_h'], ny, info['contact_slope'], steps))
         f.write('# time = %.9g, delta/h = %.9g, station band: s/h %.6g .. %.6g\n'
                 % (t, max(0.0, t - 1.0) * pull / h, s_over_h - band, s_over_h + band))
         f.write('# rows z/h (reference) = %s\n'

@@ -47,8 +47,9 @@
 #   --pull-steps N    the pull as N steps with a restart record at each
 #                     step's end (continuum_model.py --pull-steps): a run
 #                     stopped in the pull can go on from the last step it
-#                     finished (docs/continuum-check.md, "Long sheets"),
-#                     then this script with --ccx DIR/ccx
+#                     finished (scripts/ccx_resume.py DIR/ccx;
+#                     docs/continuum-check.md, "Long sheets"), then this
+#                     script with --ccx DIR/ccx
 #   --bin PATH        the program to run (default bin/drawbead, built first)
 #   -h, --help        this help
 #

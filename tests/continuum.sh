@@ -1,7 +1,8 @@
 #!/bin/bash
 # tests/continuum.sh -- the continuum cross-check (scripts/continuum_check.sh,
 # docs/continuum-check.md) on two small cases with the coarsest continuum
-# mesh (--through 2 --per-h 1, time increments of 0.1): about 20 s.
+# mesh (--through 2 --per-h 1, time increments of 0.1), and a resumed
+# CalculiX job (scripts/ccx_resume.py): about 40 s on a quiet machine.
 #
 # Usage: tests/continuum.sh [path/to/drawbead]   (run from anywhere)
 #
@@ -29,7 +30,20 @@
 #     leaves the numbers out; b) is a sheet in the tools.
 #  e) (no ccx needed) --contact-slope reaches the model's contact and
 #     friction cards (default 1e5 and 1e4 MPa/mm unchanged); 0 is refused.
-# a) and b) are skipped (ok) when ccx is not installed. Exit 0 if all
+#  f) scripts/ccx_resume.py: the deck of b) with its pull in two steps
+#     (continuum_model.py --pull-steps 2, restart records), run through,
+#     then the same job as if killed in the second pull step (its .sta and
+#     .dat cut at time 1.7) and resumed: the resume runs the last step
+#     only, the joined .dat keeps the first job's blocks to time 1.5
+#     exactly, then the resumed job's, and its forces at the end of the
+#     pull are the uninterrupted job's within 1e-3 (the resumed job loses
+#     the output times that shorten some increments: measured 2e-4); the
+#     header of an exit state extracted from the joined run
+#     (exit_state.py, the model patched at s = 0) says it was resumed; a
+#     run that finished has nothing to run (exit 0); a second resume, a
+#     folder without restart records and a missing folder are refused
+#     (exit 2)
+# a), b) and f) are skipped (ok) when ccx is not installed. Exit 0 if all
 # pass, 1 otherwise.
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -223,4 +237,103 @@ check(nc > 0 and rel(np_, nc) < 0.2, 'bead A: tension at 98%% lock %.2f N/mm, pr
 sys.exit(1 if bad else 0)
 PY
 then :; else fail=1; fi
+
+# f) a job killed in its last pull step, resumed
+steps=(--through 2 --per-h 1 --initial-inc 0.05 --max-inc 0.1 --pull-steps 2)
+r=$work/resume
+if python3 scripts/continuum_model.py "$work/bead_a_short/program/run.log" "$r/full" "${steps[@]}" >/dev/null &&
+    python3 scripts/exit_state.py patch-inp "$r/full/continuum.inp" "$r/full/continuum_model.json" 0 \
+        >/dev/null &&
+    (cd "$r/full" && OMP_NUM_THREADS=2 ccx continuum >ccx.log 2>&1); then
+    cp -r "$r/full" "$r/cut"
+    rm -f "$r/cut/continuum.rout"
+    cp -r "$r/full" "$r/killed"
+    # killed at time 1.7 (in step 3, the second pull step): the .sta and
+    # .dat as far as the job got
+    python3 - "$r/killed" <<'PY'
+import re
+import sys
+d = sys.argv[1]
+lines = open(d + '/continuum.sta').readlines()
+with open(d + '/continuum.sta', 'w') as f:
+    for ln in lines:
+        w = ln.split()
+        if len(w) == 7 and w[0].isdigit() and int(w[0]) == 3 and float(w[4]) > 1.7 + 1e-9:
+            continue
+        f.write(ln)
+head = re.compile(r'for set \S+ and time\s+(\S+)')
+keep = True
+lines = open(d + '/continuum.dat').readlines()
+with open(d + '/continuum.dat', 'w') as f:
+    for ln in lines:
+        m = head.search(ln)
+        if m:
+            keep = float(m.group(1)) <= 1.7 + 1e-9
+        if keep:
+            f.write(ln)
+PY
+    OMP_NUM_THREADS=2 python3 scripts/ccx_resume.py "$r/killed" >"$r/resume.log" 2>&1
+    rc=$?
+    python3 scripts/ccx_resume.py "$r/full" >"$r/finished.log" 2>&1
+    rc_done=$?
+    python3 scripts/ccx_resume.py "$r/killed" >"$r/again.log" 2>&1
+    rc_again=$?
+    python3 scripts/ccx_resume.py "$r/cut" >"$r/cut.log" 2>&1
+    rc_cut=$?
+    python3 scripts/ccx_resume.py "$r/none" >"$r/none.log" 2>&1
+    rc_none=$?
+    python3 scripts/exit_state.py extract "$r/killed" "$r/exit_state.txt" 0 >/dev/null 2>&1 || :
+    if python3 - "$r" "$rc" "$rc_done" "$rc_again" "$rc_cut" "$rc_none" <<'PY'
+import sys
+sys.path.insert(0, 'scripts')
+import continuum_results as cr  # noqa: E402
+r, rc, rc_done, rc_again, rc_cut, rc_none = sys.argv[1], *map(int, sys.argv[2:])
+bad = 0
+
+
+def check(ok, what):
+    global bad
+    print(('ok   ' if ok else 'FAIL ') + 'ccx_resume.py: ' + what)
+    bad += not ok
+
+
+log = open(r + '/resume.log').read()
+check(rc == 0 and '2 of 3 steps finished (time 1.5); to run: step 3' in log,
+      'the killed job resumed from step 2, step 3 run (exit %d)' % rc)
+full, res = cr.read_dat(r + '/full/continuum.dat'), cr.read_dat(r + '/killed/continuum.dat')
+check(res.get(1.5) == full.get(1.5), "the first job's blocks to time 1.5 kept")
+own = cr.read_dat(r + '/killed/continuum_r.dat')
+check(max(res) == 2.0 and sorted(t for t in res if t > 1.5) == sorted(own),
+      "the joined results: after time 1.5 the resumed job's, to time 2")
+sta = [ln.split() for ln in open(r + '/killed/continuum.sta')]
+sta = [w for w in sta if len(w) == 7 and w[0].isdigit()]
+check([w[0] for w in sta] == sorted(w[0] for w in sta) and sta[-1][0] == '3'
+      and abs(float(sta[-1][4]) - 2.0) < 1e-9, 'the joined .sta: steps in order, ending at time 2')
+worst = 0.0
+for k in ('RF:NRIGHT', 'RF:NLOWER', 'RF:NLEFT', 'RF:NUPPER'):
+    a, b = full[2.0][k], res[2.0][k]
+    m = max(abs(a[0]), abs(a[1]))
+    worst = max(worst, abs(a[0] - b[0]) / m, abs(a[1] - b[1]) / m)
+check(worst < 1e-3, 'forces at the end of the pull: largest difference %.2e of the force' % worst)
+try:
+    head = [ln for ln in open(r + '/exit_state.txt') if ln.startswith('# mesh')]
+except OSError:
+    head = []
+check(any('resumed after step 2 (scripts/ccx_resume.py)' in ln for ln in head),
+      'an extracted exit state says it was resumed')
+check(rc_done == 0 and 'to run: nothing' in open(r + '/finished.log').read(),
+      'a run that finished: nothing to run (exit %d)' % rc_done)
+check(rc_again == 2 and 'resumed already' in open(r + '/again.log').read(),
+      'a second resume refused (exit %d)' % rc_again)
+check(rc_cut == 2 and 'no continuum.rout' in open(r + '/cut.log').read(),
+      'a folder without restart records refused (exit %d)' % rc_cut)
+check(rc_none == 2 and 'not a continuum run' in open(r + '/none.log').read(),
+      'a missing folder refused (exit %d)' % rc_none)
+sys.exit(1 if bad else 0)
+PY
+    then :; else fail=1; fi
+else
+    echo "FAIL ccx_resume.py: the two-step model of continuum_bead_a_short.nml did not run"
+    fail=1
+fi
 exit $fail
