@@ -27,9 +27,12 @@ second job's after them; continuum.sta its increments of steps 1 to k and
 the second job's. The first job's files are kept as
 continuum_interrupted.dat and continuum_interrupted.sta, and
 continuum_model.json records 'resumed_after_step': k (exit_state.py puts
-it in the header of the exit state it extracts). A CalculiX job that
-stops early leaves its results up to there; they are joined all the same
-(as continuum_check.sh compares such a run) and the exit status is 1.
+it in the header of the exit state it extracts); each file is written
+under a temporary name and then renamed, so that a join cut short leaves
+either file whole. Only a second job that ends normally is joined: if
+CalculiX stops with an error (or is stopped), DIR keeps the first job's
+files as they were, the second's are left as continuum_r.* beside them,
+the exit status is 1, and the resume can be run again.
 
 What the second job does differently (measured, CalculiX 2.20): it takes
 the uninterrupted job's increments up to the first output time of the
@@ -37,7 +40,7 @@ model (*TIME POINTS) it would have stopped at, then its own: the time
 points do not survive the restart, so CalculiX prints every increment and
 no longer shortens an increment to reach an output time. On the coarse
 bead A of tests/continuum.sh the forces at the end of the pull differ
-from the uninterrupted job's by 2e-4 of their value. The second job
+from the uninterrupted job's by 1.75e-4 of their value. The second job
 writes restart records of its own (continuum_r.rout); this script resumes
 from the first job's only: a resumed job stopped again goes on again from
 step k.
@@ -46,7 +49,7 @@ step k.
            steps to run) and write continuum_r.inp, without running.
 
 Exit status: 0 done (or nothing left to run), 1 CalculiX stopped with an
-error (its results joined, as far as they go), 2 no run to resume (a
+error (nothing joined), 128 + N stopped by signal N, 2 no run to resume (a
 missing file, no restart records asked for in continuum.inp, the first
 step not finished, a run resumed already, CalculiX not installed).
 """
@@ -128,37 +131,61 @@ def copy_dat_until(dat_path, t_end, out):
 
 def run_ccx(d):
     """CalculiX on DIR/continuum_r.inp, its output in ccx_r.log; a SIGTERM
-    or SIGINT to this script stops it too. Returns its exit status."""
+    or SIGINT to this script is passed on to it. Returns its exit status
+    and the signal received (0: none)."""
     env = dict(os.environ)
     env.setdefault('OMP_NUM_THREADS', '1')
+    got = [0]
     with open(os.path.join(d, 'ccx_r.log'), 'w') as log:
         proc = subprocess.Popen(['ccx', 'continuum_r'], cwd=d, env=env, stdout=log,
                                 stderr=subprocess.STDOUT)
 
-        def stop(signum, _frame):
+        def forward(signum, _frame):
+            # only pass it on: the wait below returns once ccx has gone
+            # (waiting here too would block on the lock the wait holds)
+            got[0] = signum
             proc.send_signal(signum)
-            proc.wait()
-            sys.exit(128 + signum)
-        old = {s: signal.signal(s, stop) for s in (signal.SIGTERM, signal.SIGINT)}
+        old = {s: signal.signal(s, forward) for s in (signal.SIGTERM, signal.SIGINT)}
         try:
-            return proc.wait()
+            rc = proc.wait()
         finally:
             for s, h in old.items():
                 signal.signal(s, h)
+    return rc, got[0]
+
+
+def write_then_rename(path, write):
+    """write(f) into PATH.tmp, then rename it to PATH."""
+    with open(path + '.tmp', 'w') as f:
+        write(f)
+    os.replace(path + '.tmp', path)
+
+
+def keep_copy(src, dst):
+    """DST the same file as SRC (a hard link; a copy where links fail)."""
+    if os.path.lexists(dst):
+        os.remove(dst)
+    try:
+        os.link(src, dst)
+    except OSError:
+        shutil.copyfile(src, dst)
 
 
 def join(d, k, t_k):
-    """The two jobs' results under the usual names (module header)."""
+    """The two jobs' results under the usual names (module header); the
+    json's mark last, so that a join cut short can be run again."""
     dat, sta = os.path.join(d, 'continuum.dat'), os.path.join(d, 'continuum.sta')
     old_dat = os.path.join(d, 'continuum_interrupted.dat')
     old_sta = os.path.join(d, 'continuum_interrupted.sta')
-    os.replace(dat, old_dat)
-    os.replace(sta, old_sta)
-    with open(dat, 'w') as out:
+    keep_copy(dat, old_dat)
+    keep_copy(sta, old_sta)
+
+    def write_dat(out):
         copy_dat_until(old_dat, t_k, out)
         with open(os.path.join(d, 'continuum_r.dat')) as f:
             shutil.copyfileobj(f, out)
-    with open(sta, 'w') as out:
+
+    def write_sta(out):
         # the first job's header lines and its increments of steps 1..k
         with open(old_sta) as f:
             for line in f:
@@ -171,12 +198,13 @@ def join(d, k, t_k):
                 w = line.split()
                 if len(w) == 7 and w[0].isdigit():
                     out.write(line)
+    write_then_rename(dat, write_dat)
+    write_then_rename(sta, write_sta)
     jpath = os.path.join(d, 'continuum_model.json')
     with open(jpath) as f:
         info = json.load(f)
     info['resumed_after_step'] = k
-    with open(jpath, 'w') as f:
-        json.dump(info, f)
+    write_then_rename(jpath, lambda f: json.dump(info, f))
 
 
 def main(argv):
@@ -224,15 +252,16 @@ def main(argv):
     for name in ('continuum_r.dat', 'continuum_r.sta'):
         if os.path.exists(os.path.join(d, name)):
             os.remove(os.path.join(d, name))
-    shutil.copyfile(os.path.join(d, 'continuum.rout'), os.path.join(d, 'continuum_r.rin'))
-    rc = run_ccx(d)
-    if not (os.path.isfile(os.path.join(d, 'continuum_r.dat'))
-            and os.path.isfile(os.path.join(d, 'continuum_r.sta'))):
-        fail("CalculiX wrote no results (status %d; log: %s/ccx_r.log)" % (rc, d), 1)
+    keep_copy(os.path.join(d, 'continuum.rout'), os.path.join(d, 'continuum_r.rin'))
+    rc, sig = run_ccx(d)
+    if sig:
+        fail('stopped by signal %d: CalculiX stopped with it (status %d); %s keeps the first '
+             "job's files, the second's are continuum_r.*" % (sig, rc, d), 128 + sig)
+    if rc != 0 or not (os.path.isfile(os.path.join(d, 'continuum_r.dat'))
+                       and os.path.isfile(os.path.join(d, 'continuum_r.sta'))):
+        fail("CalculiX stopped with status %d (log: %s/ccx_r.log): nothing joined; %s keeps the "
+             "first job's files, the second's are continuum_r.*" % (rc, d, d), 1)
     join(d, k, t_k)
-    if rc != 0:
-        fail("CalculiX stopped with status %d (log: %s/ccx_r.log); its results up to there "
-             "are joined in %s" % (rc, d, d), 1)
     print('ccx_resume.py: done; %s/continuum.dat and continuum.sta hold the whole run' % d)
     return 0
 

@@ -37,12 +37,14 @@
 #     only, the joined .dat keeps the first job's blocks to time 1.5
 #     exactly, then the resumed job's, and its forces at the end of the
 #     pull are the uninterrupted job's within 1e-3 (the resumed job loses
-#     the output times that shorten some increments: measured 2e-4); the
+#     the output times that shorten some increments: measured 1.75e-4); the
 #     header of an exit state extracted from the joined run
 #     (exit_state.py, the model patched at s = 0) says it was resumed; a
 #     run that finished has nothing to run (exit 0); a second resume, a
 #     folder without restart records and a missing folder are refused
-#     (exit 2)
+#     (exit 2); restart records cut short make CalculiX fail: exit 1,
+#     nothing joined; a SIGTERM reaches CalculiX (a stand-in that waits)
+#     and the script ends with 143
 # a), b) and f) are skipped (ok) when ccx is not installed. Exit 0 if all
 # pass, 1 otherwise.
 set -u
@@ -272,6 +274,22 @@ with open(d + '/continuum.dat', 'w') as f:
         if keep:
             f.write(ln)
 PY
+    # the same with its restart records cut short: CalculiX cannot read
+    # them; and with a CalculiX that only waits, stopped by SIGTERM
+    cp -r "$r/killed" "$r/broken"
+    truncate -s 4096 "$r/broken/continuum.rout"
+    cp "$r/broken/continuum.dat" "$r/broken_before.dat"
+    cp -r "$r/killed" "$r/stopped"
+    mkdir -p "$r/fake"
+    printf '#!/bin/sh\nexec sleep 60\n' >"$r/fake/ccx"
+    chmod +x "$r/fake/ccx"
+    python3 scripts/ccx_resume.py "$r/broken" >"$r/broken.log" 2>&1
+    rc_broken=$?
+    start=$SECONDS
+    PATH=$r/fake:$PATH timeout --preserve-status -s TERM 3 python3 scripts/ccx_resume.py "$r/stopped" \
+        >"$r/stopped.log" 2>&1
+    rc_stopped=$?
+    took=$((SECONDS - start))
     OMP_NUM_THREADS=2 python3 scripts/ccx_resume.py "$r/killed" >"$r/resume.log" 2>&1
     rc=$?
     python3 scripts/ccx_resume.py "$r/full" >"$r/finished.log" 2>&1
@@ -283,11 +301,13 @@ PY
     python3 scripts/ccx_resume.py "$r/none" >"$r/none.log" 2>&1
     rc_none=$?
     python3 scripts/exit_state.py extract "$r/killed" "$r/exit_state.txt" 0 >/dev/null 2>&1 || :
-    if python3 - "$r" "$rc" "$rc_done" "$rc_again" "$rc_cut" "$rc_none" <<'PY'
+    if python3 - "$r" "$rc" "$rc_done" "$rc_again" "$rc_cut" "$rc_none" "$rc_broken" "$rc_stopped" "$took" <<'PY'
+import json
+import re
 import sys
 sys.path.insert(0, 'scripts')
 import continuum_results as cr  # noqa: E402
-r, rc, rc_done, rc_again, rc_cut, rc_none = sys.argv[1], *map(int, sys.argv[2:])
+r, rc, rc_done, rc_again, rc_cut, rc_none, rc_broken, rc_stopped, took = sys.argv[1], *map(int, sys.argv[2:])
 bad = 0
 
 
@@ -305,10 +325,23 @@ check(res.get(1.5) == full.get(1.5), "the first job's blocks to time 1.5 kept")
 own = cr.read_dat(r + '/killed/continuum_r.dat')
 check(max(res) == 2.0 and sorted(t for t in res if t > 1.5) == sorted(own),
       "the joined results: after time 1.5 the resumed job's, to time 2")
+
+
+
+def time_blocks(path, t):
+    """How many blocks of a .dat file are headed with time t."""
+    head = re.compile(r'for set \S+ and time\s+(\S+)')
+    return sum(1 for ln in open(path) for m in [head.search(ln)] if m and float(m.group(1)) == t)
+
+
+n15 = time_blocks(r + '/full/continuum.dat', 1.5)
+check(n15 > 0 and time_blocks(r + '/killed/continuum.dat', 1.5) == n15,
+      "step 2's last output (time 1.5) once in the joined .dat (%d blocks)" % n15)
 sta = [ln.split() for ln in open(r + '/killed/continuum.sta')]
-sta = [w for w in sta if len(w) == 7 and w[0].isdigit()]
-check([w[0] for w in sta] == sorted(w[0] for w in sta) and sta[-1][0] == '3'
-      and abs(float(sta[-1][4]) - 2.0) < 1e-9, 'the joined .sta: steps in order, ending at time 2')
+sta = [w for w in sta if len(w) == 7 and w[0].isdigit() and not w[2].endswith('U')]
+times = [float(w[4]) for w in sta]
+check(all(a < b for a, b in zip(times, times[1:])) and sta[-1][0] == '3' and abs(times[-1] - 2.0) < 1e-9,
+      'the joined .sta: converged increments in increasing time, ending at time 2')
 worst = 0.0
 for k in ('RF:NRIGHT', 'RF:NLOWER', 'RF:NLEFT', 'RF:NUPPER'):
     a, b = full[2.0][k], res[2.0][k]
@@ -329,6 +362,12 @@ check(rc_cut == 2 and 'no continuum.rout' in open(r + '/cut.log').read(),
       'a folder without restart records refused (exit %d)' % rc_cut)
 check(rc_none == 2 and 'not a continuum run' in open(r + '/none.log').read(),
       'a missing folder refused (exit %d)' % rc_none)
+check(rc_broken == 1 and 'nothing joined' in open(r + '/broken.log').read()
+      and open(r + '/broken/continuum.dat').read() == open(r + '/broken_before.dat').read()
+      and 'resumed_after_step' not in json.load(open(r + '/broken/continuum_model.json')),
+      'restart records CalculiX cannot read: exit 1 (%d), nothing joined, the run unmarked' % rc_broken)
+check(rc_stopped == 143 and took < 20 and 'stopped by signal 15' in open(r + '/stopped.log').read(),
+      'SIGTERM passed on to CalculiX: exit 143 (%d) after %d s' % (rc_stopped, took))
 sys.exit(1 if bad else 0)
 PY
     then :; else fail=1; fi
