@@ -210,11 +210,13 @@ python3 scripts/continuum_model.py "$tmp/run/program/run.log" "$tmp/one_step" --
 check "--pull-steps 1 is --pull-step (the same input)" cmp -s "$tmp/one_step/continuum.inp" "$tmp/two/continuum.inp"
 
 # g) bead B (input/exit_fig9d_beadB_steel_free.nml, 140h pulled 48h, about
-# 8 s) against its kept continuum exit state (the pull a step of its own,
-# 2 per h, slope 1e4): thickness within 2% and the middle's plastic strain
-# within 10%, the targets; the faces' measured 11.9% and 15.2% high (the
-# 10% target is not met, docs/validation.md "The sheet leaving the bead"),
-# held here at 18%, and the whole profile above the continuum's
+# 8 s) against its kept continuum exit state (the default mesh, 4 per h and
+# slope 1e5, the pull in 8 steps, resumed after step 6): the thickness
+# within 2% and the top face's plastic strain within 10%, the targets; the
+# bottom face's measured 10.2% low and the middle's 17.8% low (the
+# continuum's sheet is thinner: its thickness log strain -0.103 against
+# the program's -0.086; docs/validation.md "The sheet leaving the bead"),
+# held here at 12% and 20%, and both named outside 10%
 deck_b=input/exit_fig9d_beadB_steel_free.nml
 kept_b=docs/validation/continuum/exit_fig9d_beadB_steel_free/exit_state.txt
 scripts/exit_state_check.sh "$deck_b" -o "$tmp/run_b" --continuum "$kept_b" --bin "$prog" \
@@ -223,16 +225,18 @@ rc=$?
 check "bead B: exit_state_check.sh with its kept continuum exit state: exit status 0 ($rc)" test "$rc" -eq 0
 check "bead B: the material at the exit station has passed the whole bead" \
     grep -q '^# passed the whole bead: yes' "$tmp/run_b/program/exit_state.dat"
-python3 scripts/exit_state.py compare "$tmp/run_b/program" "$kept_b" --check --tol-middle 0.10 \
-    --tol-eqps 0.18 >"$tmp/check_b.txt"
+python3 scripts/exit_state.py compare "$tmp/run_b/program" "$kept_b" --check --tol-middle 0.20 \
+    --tol-eqps 0.12 >"$tmp/check_b.txt"
 rc=$?
-check "bead B: thickness within 2%, the middle's eqps within 10%, the faces' within 18% (exit status $rc)" \
+check "bead B: thickness within 2%, the faces' eqps within 12%, the middle's within 20% (exit status $rc)" \
     test "$rc" -eq 0
-python3 scripts/exit_state.py compare "$tmp/run_b/program" "$kept_b" --check --tol-eqps 0.10 \
-    >"$tmp/check_b10.txt"
+top_b=$(awk '/^eqps, top face/ { print $(NF - ($0 ~ /%/ ? 1 : 0)); exit }' "$tmp/check_b.txt")
+check "bead B: the top face's eqps within 10% (ratio $top_b)" \
+    awk -v a="$top_b" 'BEGIN { exit !(a != "" && (a - 1) ^ 2 <= 0.10 ^ 2) }'
+python3 scripts/exit_state.py compare "$tmp/run_b/program" "$kept_b" --check >"$tmp/check_b10.txt"
 rc=$?
-check "bead B: the faces outside 10% (the target missed, as measured): exit status 1 ($rc), both faces named" \
-    bash -c "test $rc -eq 1 && grep -q '^# outside the targets: eqps, bottom face (z = -h/2), eqps, top face (z = +h/2)$' \
+check "bead B: the bottom face and the middle outside 10% (the target missed, as measured): exit status 1 ($rc), both named" \
+    bash -c "test $rc -eq 1 && grep -q '^# outside the targets: eqps, bottom face (z = -h/2), eqps, middle (z = 0)$' \
         '$tmp/check_b10.txt'"
 
 echo "exit_state_continuum.sh: $((checks - failures)) of $checks checks passed"
