@@ -86,27 +86,26 @@ def steps_of(inp_text):
     return steps
 
 
-def sta_increments(path):
-    """The converged increments of a .sta file: [(step, step time, line)]."""
-    out = []
-    with open(path) as f:
-        for line in f:
-            w = line.split()
-            if len(w) != 7 or not w[0].isdigit() or w[2].endswith('U'):
-                continue
-            try:
-                out.append((int(w[0]), float(w[5]), line))
-            except ValueError:
-                continue
-    return out
+def sta_step(line):
+    """The step of a .sta file's increment line (STEP INC ATT ITRS TOT TIME
+    STEP TIME INC TIME), None for its other lines."""
+    w = line.split()
+    return int(w[0]) if len(w) == 7 and w[0].isdigit() else None
 
 
-def finished_steps(increments, periods):
-    """How many steps, in order, the increments show finished (the last
+def finished_steps(sta_path, periods):
+    """How many steps, in order, continuum.sta shows finished (the last
     converged increment of step k at its step time periods[k-1])."""
     last = {}
-    for step, t, _ in increments:
-        last[step] = t
+    with open(sta_path) as f:
+        for line in f:
+            w = line.split()
+            if sta_step(line) is None or w[2].endswith('U'):
+                continue
+            try:
+                last[int(w[0])] = float(w[5])
+            except ValueError:
+                continue
     k = 0
     for step, period in enumerate(periods, start=1):
         if step not in last or last[step] < period * (1.0 - 1e-6):
@@ -189,14 +188,12 @@ def join(d, k, t_k):
         # the first job's header lines and its increments of steps 1..k
         with open(old_sta) as f:
             for line in f:
-                w = line.split()
-                if len(w) == 7 and w[0].isdigit() and int(w[0]) > k:
-                    continue
-                out.write(line)
+                step = sta_step(line)
+                if step is None or step <= k:
+                    out.write(line)
         with open(os.path.join(d, 'continuum_r.sta')) as f:
             for line in f:
-                w = line.split()
-                if len(w) == 7 and w[0].isdigit():
+                if sta_step(line) is not None:
                     out.write(line)
     write_then_rename(dat, write_dat)
     write_then_rename(sta, write_sta)
@@ -233,7 +230,7 @@ def main(argv):
         fail("'%s' holds no continuum.rout: the first step never finished" % d)
     steps = steps_of(inp)
     periods = [p for _, p in steps]
-    k = finished_steps(sta_increments(os.path.join(d, 'continuum.sta')), periods)
+    k = finished_steps(os.path.join(d, 'continuum.sta'), periods)
     if k == 0:
         fail("'%s': the first step did not finish: run the model again" % d)
     t_k = sum(periods[:k])

@@ -484,14 +484,13 @@ def write_lines(f, items, per_line=8):
 
 
 def build(nml, out_dir, through, per_h, inc0, inc_max, inc_min, out_every, slope=CONTACT_SLOPE,
-          pull_step=False, pull_steps=1):
+          pull_steps=0):
     """Write OUT_DIR/continuum.inp and continuum_model.json for the case;
     slope: the contact's pressure-overclosure slope, MPa/mm (the stick slope
-    is STICK_RATIO times it); pull_step: the pull a step of its own,
-    pull_steps: 1 the same, more: the pull in that many steps with restart
-    records."""
-    if pull_steps >= 1:
-        pull_step = True
+    is STICK_RATIO times it); pull_steps: 0 the lock and the pull one
+    step, 1 the pull a step of its own (--pull-step), more: the pull in
+    that many steps with restart records."""
+    pull_step = pull_steps >= 1
     deck = nml.get('_deck', '?')
     sheet, mat, tools, load = nml['sheet'], nml['material'], nml['tools'], nml['loading']
     sheet_material, kinematic_c = material_cards(deck, mat)
@@ -810,7 +809,7 @@ def main(argv):
     os.makedirs(args[1], exist_ok=True)
     build(nml, args[1], opts['--through'], opts['--per-h'], opts['--initial-inc'],
           opts['--max-inc'], opts['--min-inc'], opts['--output-every'] or opts['--max-inc'],
-          opts['--contact-slope'], opts['--pull-step'], opts['--pull-steps'])
+          opts['--contact-slope'], opts['--pull-steps'] or int(opts['--pull-step']))
     return 0
 
 
