@@ -240,6 +240,14 @@ contains
    !>   sum lambda_k xi_k^2 = sigma_y^2,    beta = 2 mu dp / sigma_y,
    !> e_k = v_k,2: a 2 x 2 system for d dp, d x per input (eps11, eps33,
    !> p), then d tau = d tau^T(0) + D e_2 d x - 2 mu (d dp n + dp d n).
+   !>
+   !> The iteration starts from dp0 where it is given (> 0): within an
+   !> increment the global Newton iterations call the update again with
+   !> strains that change less and less, and the last trial's dp is then
+   !> close to the root (material_law's header; on
+   !> input/cc_fig5a_beadA_steel_kinematic.nml the passes per block fall
+   !> from 3.4 to 2.3).  The root is the same from any start, to the
+   !> return's tolerance.
    !>  con      [in]  the law's constants
    !>  np       [in]  number of points
    !>  tr0      [in]  (np, 3) the elastic trial (tau11, tau22, tau33) at x = 0
@@ -247,6 +255,7 @@ contains
    !>  ep       [in]  (np) the equivalent plastic strain at the start
    !>  syn, hpn [in]  (np) sigma_y and its slope there
    !>  aa       [in]  (np, 2, max_back_stresses) v_k . alpha_i at the start
+   !>  dp0      [in]  (np) where the iteration starts, >= 0 (0: at the trial)
    !>  dpv      [out] (np) the plastic strain increments
    !>  xv       [out] (np) the thickness log strain increments
    !>  nv       [out] (np, 3) the flow directions at the end
@@ -257,19 +266,20 @@ contains
    !>  tng      [out] (np) the condensed continuum tangent d tau11 / d eps11
    !>  ok       [out] .false.: a point found no root (no convergence, a
    !>                 non-positive flow stress, a non-finite value)
-   pure subroutine mixed_return_block(con, np, tr0, pp, ep, syn, hpn, aa, dpv, xv, nv, syv, hpv, &
+   pure subroutine mixed_return_block(con, np, tr0, pp, ep, syn, hpn, aa, dp0, dpv, xv, nv, syv, hpv, &
                                       tau, dd, cpl, tng, ok)
       type(combined_constants), intent(in) :: con
       integer, intent(in) :: np
       real(dp), intent(in) :: tr0(np, 3), pp(np), ep(np), syn(np), hpn(np), &
-                              aa(np, 2, max_back_stresses)
+                              aa(np, 2, max_back_stresses), dp0(np)
       real(dp), intent(out) :: dpv(np), xv(np), nv(np, 3), syv(np), hpv(np), tau(np, 2), &
                                dd(np, 2, 2), cpl(np), tng(np)
       logical, intent(out) :: ok
       real(dp) :: t(np, 2), lo(np), hi(np), step(np), epv(np), g(np, 2), dc0(np, 2), xi(np, 2), kap(np), &
-                  theta(np), dtheta(np), beta(np), dbeta(np), phi(np), dphi(np)
-      real(dp) :: n_far, n_out
+                  theta(np), dtheta(np), beta(np), dbeta(np), phi(np), dphi(np), sys(np), hps(np)
+      real(dp) :: n_far, n_out, r, den
       integer :: iter, j, k
+      ok = .false.
       do k = 1, 2
          do j = 1, np
             t(j, k) = con%eig_vec(1, k)*tr0(j, 1) + con%eig_vec(2, k)*tr0(j, 2) &
@@ -277,22 +287,38 @@ contains
          end do
       end do
       do j = 1, np
-         dpv(j) = 0.0_dp
+         dpv(j) = dp0(j)
          lo(j) = 0.0_dp
          hi(j) = huge(1.0_dp)
          syv(j) = syn(j)
          hpv(j) = hpn(j)
       end do
-      ok = .false.
+      if (any(dpv > 0.0_dp)) then
+         do j = 1, np
+            epv(j) = ep(j) + dpv(j)
+         end do
+         call flow_stress_block(np, epv, con%props, size(con%props), sys, hps)
+         ! the points that start at the trial keep the cached values (a
+         ! scalar and a block evaluation of the law may differ in the last bit)
+         do j = 1, np
+            syv(j) = merge(sys(j), syn(j), dpv(j) > 0.0_dp)
+            hpv(j) = merge(hps(j), hpn(j), dpv(j) > 0.0_dp)
+         end do
+         if (.not. all(syv > 0.0_dp .and. syv <= huge(1.0_dp))) return
+      end if
       do iter = 1, max_return_iter
          call mixed_eval(con, np, t, tr0(:, 2), pp, aa, dpv, syv, hpv, xv, xi, g, dc0, theta, &
                          dtheta, beta, dbeta, phi, dphi)
          ! (finite: |x| <= huge, false for NaN; one vector loop, no calls)
          if (.not. all(abs(phi) <= huge(1.0_dp) .and. abs(dphi) <= huge(1.0_dp))) return
          if (iter == 1) then
-            ! sbar's decay rate at dp = 0 (mixed_step)
+            ! sbar's decay rate (mixed_step): with sbar = sbar_0/(1 + kappa
+            ! dp/sigma_y) and r = -sbar'/sbar at the start dp,
+            ! kappa = r sigma_y/(1 - r dp); none where that fails
             do j = 1, np
-               kap(j) = max(-(dphi(j) + hpv(j))*syv(j)/(phi(j) + syv(j)), 0.0_dp)
+               r = -(dphi(j) + hpv(j))/(phi(j) + syv(j))
+               den = 1.0_dp - r*dpv(j)
+               kap(j) = merge(max(r*syv(j)/max(den, 0.1_dp), 0.0_dp), 0.0_dp, den > 0.1_dp)
             end do
          end if
          call mixed_step(np, phi, dphi, syv, hpv, kap, dpv, lo, hi, step, n_far, n_out)

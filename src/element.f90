@@ -69,7 +69,7 @@ contains
    !>  wz     [in]  Simpson weights through the thickness
    !>  mat    [in]  the material
    !>  hn     [in]  converged history (npt, n_hist, n_gauss)
-   !>  h1     [out] trial history
+   !>  h1     [in,out] trial history (on entry the last trial's: section_response)
    !>  re     [out] internal force vector (8)
    !>  ke     [out] tangent (8, 8)
    !>  gp     [out] per Gauss point: eps, rho, N, M, gradient energy (igp_*)
@@ -86,7 +86,7 @@ contains
       real(dp), intent(in) :: le, ul(8), wz(:)
       class(material_law_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :, :)
-      real(dp), contiguous, intent(out) :: h1(:, :, :)
+      real(dp), contiguous, intent(inout) :: h1(:, :, :)
       real(dp), intent(out) :: re(8), ke(8, 8), gp(n_gp, n_gauss)
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in) :: face_force(2, n_gauss), dface_force(8, 2, n_gauss)

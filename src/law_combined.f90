@@ -99,6 +99,9 @@ contains
       law%poisson = props(ip_poisson)
       call set_normal_layout(law, 3 + 3*law%k%n_back, isv_p)
       law%name = 'combined'
+      ! the section's update starts its return where the last trial ended
+      ! (material_law's header, mixed_return_block)
+      law%starts_from_trial = .true.
    end function combined_law
 
    !> COMBINED_LAW_OF_DECK: the law of a deck with model = 'combined', its
@@ -243,7 +246,7 @@ contains
    !> that yield gathered and returned together by mixed_return_block
    !> (docs/theory.md §13.7).
    subroutine combined_update(law, n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, &
-                              pnewdt, s22n, s22, dsig_ds22)
+                              pnewdt, s22n, s22, dsig_ds22, dp_start)
       class(combined_law_type), intent(in) :: law
       integer, intent(in) :: n
       real(dp), intent(inout) :: stress(n, 2), statev(n, law%n_state), sse(n), spd(n)
@@ -252,9 +255,10 @@ contains
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in), optional :: s22n(n), s22(n)
       real(dp), intent(out), optional :: dsig_ds22(n)
+      real(dp), intent(in), optional :: dp_start(n)
       real(dp) :: lam, l2m, e, nu, e_ps, sy, hp, n_bad
-      ! every point's elastic trial
-      real(dp) :: pnv(n), pv(n), xe(n), te(n, 3), xie(n, 3), q2(n)
+      ! every point's elastic trial; the return's start
+      real(dp) :: pnv(n), pv(n), xe(n), te(n, 3), xie(n, 3), q2(n), dps(n)
       logical :: elastic(n)
       integer :: k, i, np
       ! the law is rate-independent and the same at every point
@@ -342,12 +346,22 @@ contains
       end if
       np = count(.not. elastic)
       if (np == 0) return
+      ! the return's start: the last trial's increment where it is one
+      ! (a non-finite or negative value, or one of 1 or more, is none)
+      do k = 1, n
+         dps(k) = 0.0_dp
+      end do
+      if (present(dp_start)) then
+         do k = 1, n
+            dps(k) = merge(dp_start(k), 0.0_dp, dp_start(k) > 0.0_dp .and. dp_start(k) < 1.0_dp)
+         end do
+      end if
       if (present(dsig_ds22)) then
          call yielding_update(law, n, np, elastic, stress, statev, ddsdde, sse, spd, dstran, pnv, pv, &
-                              pnewdt, dsig_ds22)
+                              dps, pnewdt, dsig_ds22)
       else
          call yielding_update(law, n, np, elastic, stress, statev, ddsdde, sse, spd, dstran, pnv, pv, &
-                              pnewdt)
+                              dps, pnewdt)
       end if
    end subroutine combined_update
 
@@ -360,18 +374,19 @@ contains
    !>  stress, statev, ddsdde, sse, spd [in,out] the block's (update's)
    !>  dstran                    [in]     (n, 2) the strain increments
    !>  pnv, pv                   [in]     (n) the prescribed tau22 at the start and the end
+   !>  dps                       [in]     (n) the return's start, >= 0 (0: the trial)
    !>  pnewdt                    [in,out] < 1 when a point found no root
    !>  dsig_ds22                 [in,out] optional: d tau11 / d tau22
    subroutine yielding_update(law, n, np, elastic, stress, statev, ddsdde, sse, spd, dstran, pnv, &
-                              pv, pnewdt, dsig_ds22)
+                              pv, dps, pnewdt, dsig_ds22)
       class(combined_law_type), intent(in) :: law
       integer, intent(in) :: n, np
       logical, intent(in) :: elastic(n)
       real(dp), intent(inout) :: stress(n, 2), statev(n, law%n_state), sse(n), spd(n), &
                                  ddsdde(n, 2, 2), pnewdt
-      real(dp), intent(in) :: dstran(n, 2), pnv(n), pv(n)
+      real(dp), intent(in) :: dstran(n, 2), pnv(n), pv(n), dps(n)
       real(dp), intent(inout), optional :: dsig_ds22(n)
-      real(dp) :: tr0(np, 3), pp(np), ep(np), syn(np), hpn(np), aa(np, 2, max_back_stresses), &
+      real(dp) :: tr0(np, 3), pp(np), ep(np), syn(np), hpn(np), aa(np, 2, max_back_stresses), dp0(np), &
                   dpv(np), xv(np), nv(np, 3), syv(np), hpv(np), tau(np, 2), dd(np, 2, 2), &
                   cpl(np), tng(np), w(np), lam, l2m, a, ci, an, al
       integer :: k, i, j, c, ic, idx(np)
@@ -390,6 +405,7 @@ contains
          ep(j) = statev(k, isv_p)
          syn(j) = statev(k, isv_flow)
          hpn(j) = statev(k, isv_slope)
+         dp0(j) = dps(k)
       end do
       do i = 1, law%k%n_back
          ic = isv_alpha + 3*(i - 1)
@@ -401,7 +417,7 @@ contains
                           + law%k%eig_vec(3, 2)*statev(k, ic + 2)
          end do
       end do
-      call mixed_return_block(law%k, np, tr0, pp, ep, syn, hpn, aa, dpv, xv, nv, syv, hpv, tau, dd, &
+      call mixed_return_block(law%k, np, tr0, pp, ep, syn, hpn, aa, dp0, dpv, xv, nv, syv, hpv, tau, dd, &
                               cpl, tng, ok)
       if (.not. ok) then
          pnewdt = min(pnewdt, 0.5_dp)

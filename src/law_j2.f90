@@ -83,7 +83,7 @@ contains
    !> J2_UPDATE: material_law_type's update (arguments there): umat_block
    !> on the block, with a prescribed tau22 by the shift of the module header.
    subroutine j2_update(law, n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, pnewdt, &
-                        s22n, s22, dsig_ds22)
+                        s22n, s22, dsig_ds22, dp_start)
       class(j2_law_type), intent(in) :: law
       integer, intent(in) :: n
       real(dp), intent(inout) :: stress(n, 2), statev(n, law%n_state), sse(n), spd(n)
@@ -92,12 +92,16 @@ contains
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in), optional :: s22n(n), s22(n)
       real(dp), intent(out), optional :: dsig_ds22(n)
+      real(dp), intent(in), optional :: dp_start(n)
       real(dp) :: c, nu, e, dmod(n, 2), s11, s33, p
       integer :: k
       ! the law is homogeneous and additive: the start strain and the
-      ! position do not enter
+      ! position do not enter; its return starts from the elastic trial
+      ! (starts_from_trial is .false.: dp_start is never given)
       associate (unused => stran11, unused2 => zbar)
       end associate
+      if (present(dp_start)) then
+      end if
       if (.not. present(s22)) then
          call umat_block(n, stress, statev, ddsdde, sse, spd, dstran, law%props, size(law%props), &
                          law%n_state, pnewdt)
@@ -132,7 +136,7 @@ contains
    !> umat_block_to reads the start state where it is and writes every end
    !> array once.
    subroutine j2_update_to(law, n, stress_n, statev_n, sse_n, spd_n, stress, statev, sse, spd, &
-                           ddsdde, stran11, dstran, zbar, pnewdt)
+                           ddsdde, stran11, dstran, zbar, pnewdt, dp_start)
       class(j2_law_type), intent(in) :: law
       integer, intent(in) :: n
       real(dp), intent(in) :: stress_n(n, 2), statev_n(n, law%n_state), sse_n(n), spd_n(n)
@@ -140,8 +144,11 @@ contains
       real(dp), intent(out) :: ddsdde(n, 2, 2)
       real(dp), intent(in) :: stran11(n), dstran(n, 2), zbar(n)
       real(dp), intent(inout) :: pnewdt
+      real(dp), intent(in), optional :: dp_start(n)
       associate (unused => stran11, unused2 => zbar)
       end associate
+      if (present(dp_start)) then
+      end if
       call umat_block_to(n, stress_n, statev_n, sse_n, spd_n, stress, statev, ddsdde, sse, spd, &
                          dstran, law%props, size(law%props), law%n_state, pnewdt)
    end subroutine j2_update_to

@@ -27,6 +27,16 @@
 !>   with a prescribed tau22, d tau11 / d tau22 at fixed strain.  A law asks
 !>   for a smaller increment with pnewdt < 1; the outputs are then not to
 !>   be used.
+!>
+!> A start for the return
+!>   Within one increment the global Newton iterations call the update
+!>   again and again from the same converged state with strains that
+!>   change less and less.  A law whose return mapping iterates on the
+!>   equivalent plastic strain increment says so (starts_from_trial); the
+!>   section then hands it the increment its last trial reached at each
+!>   point (dp_start), where the return may start.  It is a start only: the
+!>   root, and with it the end state, is the same from any start to the
+!>   return's tolerance.
 module material_law
    use kinds, only: dp
    implicit none
@@ -52,6 +62,9 @@ module material_law
       !> (a user's UMAT, which may keep data of its own); the assembly then
       !> runs on one thread
       logical :: thread_safe = .true.
+      !> .true.: update takes dp_start as the start of its return mapping
+      !> (module header); the section then reads its last trial history
+      logical :: starts_from_trial = .false.
    contains
       procedure(update_interface), deferred :: update
       procedure :: update_to => law_update_to
@@ -79,8 +92,12 @@ module material_law
       !>  s22n, s22 [in]   optional: the prescribed tau22 at the start and the
       !>                   end of the increment; absent: tau22 = 0
       !>  dsig_ds22 [out]  optional, with s22: d tau11 / d tau22 at fixed strain
+      !>  dp_start  [in]   optional: (n) the equivalent plastic strain
+      !>                   increment of each point's last trial in this
+      !>                   increment, >= 0 (0: none), where a law with
+      !>                   starts_from_trial may start its return (module header)
       subroutine update_interface(law, n, stress, statev, ddsdde, sse, spd, stran11, dstran, &
-                                  zbar, pnewdt, s22n, s22, dsig_ds22)
+                                  zbar, pnewdt, s22n, s22, dsig_ds22, dp_start)
          import :: material_law_type, dp
          class(material_law_type), intent(in) :: law
          integer, intent(in) :: n
@@ -90,6 +107,7 @@ module material_law
          real(dp), intent(inout) :: pnewdt
          real(dp), intent(in), optional :: s22n(n), s22(n)
          real(dp), intent(out), optional :: dsig_ds22(n)
+         real(dp), intent(in), optional :: dp_start(n)
       end subroutine update_interface
    end interface
 
@@ -108,8 +126,9 @@ contains
    !>  ddsdde                   [out] (n, 2, 2) consistent tangent
    !>  stran11, dstran, zbar    [in]  as update
    !>  pnewdt                   [in,out] as update
+   !>  dp_start                 [in]  optional, as update
    subroutine law_update_to(law, n, stress_n, statev_n, sse_n, spd_n, stress, statev, sse, spd, &
-                            ddsdde, stran11, dstran, zbar, pnewdt)
+                            ddsdde, stran11, dstran, zbar, pnewdt, dp_start)
       class(material_law_type), intent(in) :: law
       integer, intent(in) :: n
       real(dp), intent(in) :: stress_n(n, 2), statev_n(n, law%n_state), sse_n(n), spd_n(n)
@@ -117,11 +136,13 @@ contains
       real(dp), intent(out) :: ddsdde(n, 2, 2)
       real(dp), intent(in) :: stran11(n), dstran(n, 2), zbar(n)
       real(dp), intent(inout) :: pnewdt
+      real(dp), intent(in), optional :: dp_start(n)
       stress = stress_n
       statev = statev_n
       sse = sse_n
       spd = spd_n
-      call law%update(n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, pnewdt)
+      call law%update(n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, pnewdt, &
+                      dp_start=dp_start)
    end subroutine law_update_to
 
    !> LAW_STATE_MAPPED: state variables interpolated between material

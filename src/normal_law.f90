@@ -103,7 +103,7 @@ contains
    !> NORMAL_UPDATE: material_law_type's update (arguments there): each
    !> point by drive_thickness.
    subroutine normal_update(law, n, stress, statev, ddsdde, sse, spd, stran11, dstran, zbar, &
-                            pnewdt, s22n, s22, dsig_ds22)
+                            pnewdt, s22n, s22, dsig_ds22, dp_start)
       class(normal_law_type), intent(in) :: law
       integer, intent(in) :: n
       real(dp), intent(inout) :: stress(n, 2), statev(n, law%n_state), sse(n), spd(n)
@@ -112,8 +112,13 @@ contains
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in), optional :: s22n(n), s22(n)
       real(dp), intent(out), optional :: dsig_ds22(n)
+      real(dp), intent(in), optional :: dp_start(n)
       real(dp) :: p_n, p
       integer :: k
+      ! the thickness strain is driven from the elastic trial
+      ! (starts_from_trial is .false.: dp_start is never given)
+      if (present(dp_start)) then
+      end if
       do k = 1, n
          p_n = 0.0_dp
          p = 0.0_dp

@@ -89,7 +89,9 @@ contains
    !>  wz       [in]  Simpson weights (reference thickness), sum = h
    !>  mat      [in]  the material (built-in or a user's UMAT)
    !>  hn       [in]  converged history of the stations
-   !>  h1       [out] trial history at (eps, rho)
+   !>  h1       [in,out] trial history at (eps, rho); on entry the last
+   !>                 trial's, read only by a law that starts its return
+   !>                 there (material_law's starts_from_trial)
    !>  force    [out] N = sum w tau/Lambda
    !>  moment   [out] M = sum w tau zbar/Lambda
    !>  c        [out] C(2,2): dN/deps, dN/drho = dM/deps, dM/drho (consistent)
@@ -103,18 +105,32 @@ contains
       real(dp), intent(in) :: eps, rho, wz(:)
       class(material_law_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :)
-      real(dp), contiguous, intent(out) :: h1(:, :)
+      real(dp), contiguous, intent(inout) :: h1(:, :)
       real(dp), intent(out) :: force, moment, c(2, 2)
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in) :: face_stress(2)
       real(dp), intent(out) :: cs(2, 2)
       integer :: k, npt, last, ie22
       real(dp) :: lam(size(wz)), log_lam(size(wz)), dstran(size(wz), 2)
-      real(dp) :: ddsdde(size(wz), 2, 2), s22(size(wz)), zeta(size(wz)), dsig(size(wz))
+      real(dp) :: ddsdde(size(wz), 2, 2), s22(size(wz)), zeta(size(wz)), dsig(size(wz)), &
+                  dp_start(size(wz))
       real(dp) :: zb, tau, wl, wl2
+      integer :: ieq
       logical :: with_s22
       npt = size(wz)
       last = ih_statev - 1 + mat%n_state
+      ! where a law that asks for it may start its return: the equivalent
+      ! plastic strain increment of the last trial (after a commit or a
+      ! cut-back the histories' difference is <= 0: none)
+      ieq = col_eqps(mat)
+      do k = 1, npt
+         dp_start(k) = 0.0_dp
+      end do
+      if (mat%starts_from_trial .and. ieq > 0) then
+         do k = 1, npt
+            dp_start(k) = max(h1(k, ieq) - hn(k, ieq), 0.0_dp)
+         end do
+      end if
       force = 0.0_dp
       moment = 0.0_dp
       c = 0.0_dp
@@ -141,7 +157,7 @@ contains
          call mat%update_to(npt, hn(:, ih_stress:ih_stress + 1), hn(:, ih_statev:last), &
                             hn(:, ih_sse), hn(:, ih_spd), h1(:, ih_stress:ih_stress + 1), &
                             h1(:, ih_statev:last), h1(:, ih_sse), h1(:, ih_spd), ddsdde, &
-                            hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt)
+                            hn(:, ih_strain), dstran, hn(:, ih_zbar), pnewdt, dp_start=dp_start)
          if (pnewdt < 1.0_dp) then
             h1 = hn
             return
@@ -160,8 +176,12 @@ contains
          end do
          call mat%update(npt, h1(:, ih_stress:ih_stress + 1), h1(:, ih_statev:last), ddsdde, &
                          h1(:, ih_sse), h1(:, ih_spd), hn(:, ih_strain), dstran, hn(:, ih_zbar), &
-                         pnewdt, hn(:, ih_stress22), s22, dsig)
-         if (pnewdt < 1.0_dp) return
+                         pnewdt, hn(:, ih_stress22), s22, dsig, dp_start=dp_start)
+         if (pnewdt < 1.0_dp) then
+            ! (a failed update leaves no partial trial behind: dp_start)
+            h1 = hn
+            return
+         end if
          ie22 = col_eps22(mat)
          do k = 1, npt
             h1(k, ih_stress22) = s22(k)

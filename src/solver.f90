@@ -191,7 +191,7 @@ contains
       integer, intent(in) :: e
       real(dp), intent(in) :: shifts(2), u1(:)
       real(dp), contiguous, intent(in) :: hn(:, :, :)
-      real(dp), contiguous, intent(out) :: h1(:, :, :)
+      real(dp), contiguous, intent(inout) :: h1(:, :, :)
       real(dp), intent(in) :: cn(:, :, :)
       real(dp), intent(inout) :: c1(:, :, :)
       real(dp), intent(out) :: gp(:, :), re(8), ke(8, 8), fs(2), pnewdt, ft(2, n_gauss, 2)
