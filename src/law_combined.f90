@@ -388,7 +388,7 @@ contains
       real(dp), intent(inout), optional :: dsig_ds22(n)
       real(dp) :: tr0(np, 3), pp(np), ep(np), syn(np), hpn(np), aa(np, 2, max_back_stresses), dp0(np), &
                   dpv(np), xv(np), nv(np, 3), syv(np), hpv(np), tau(np, 2), dd(np, 2, 2), &
-                  cpl(np), tng(np), w(np), lam, l2m, a, ci, an, al
+                  cpl(np), tng(np), w(np), av(np), lam, l2m, a, ci, an, al
       integer :: k, i, j, c, ic, idx(np)
       logical :: ok
       lam = law%k%lam
@@ -431,11 +431,14 @@ contains
       ! their share of the plastic work, sum (alpha_n + alpha)/2 . dp n
       do i = 1, law%k%n_back
          ci = (2.0_dp/3.0_dp)*law%k%c(i)
+         do j = 1, np
+            av(j) = 1.0_dp/(1.0_dp + law%k%gamma(i)*dpv(j))
+         end do
          do c = 1, 3
             ic = isv_alpha + c - 1 + 3*(i - 1)
             do j = 1, np
                k = idx(j)
-               a = 1.0_dp/(1.0_dp + law%k%gamma(i)*dpv(j))
+               a = av(j)
                an = statev(k, ic)
                al = a*(an + ci*dpv(j)*nv(j, c))
                w(j) = w(j) + 0.5_dp*(an + al)*dpv(j)*nv(j, c)
