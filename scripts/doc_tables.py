@@ -573,35 +573,38 @@ def gen_contact_cost(ctx):
     return lambda raw: out
 
 
-def gen_laws_cost(ctx):
-    """docs/performance.md: the cost of the material and friction laws on
-    input/cc_fig5a_beadA_steel.nml (bead A, clamped, mu = 0.1, the contact
-    section): as shipped (the paper's J2 law), the same on its 80 uniform
-    elements (refine_exit = .false.: the mesh of the run with back
-    stresses, which does not tear), with model = 'combined' and
-    no back stress (law_combined's return mapping and the driven thickness
-    strain, the same material), with two Armstrong-Frederick back stresses
-    (C = 20000, 2000 MPa, gamma = 200, 0), and with the power-law mu(p) of
-    friction_power; each stopped at 2h of pull, one thread, five runs,
-    scripts/bench.sh --markdown, verbatim."""
+# the variants of input/cc_fig5a_beadA_steel.nml of the laws' cost (name:
+# the groups merged into the deck's own)
+LAWS_COST_VARIANTS = {
+    "j2": "",
+    "j2_uniform": "&sheet refine_exit = .false. /\n",
+    "combined_no_back_stress": "&material model = 'combined' /\n",
+    # the material of input/cc_fig5a_beadA_steel_kinematic.nml (the
+    # continuum-checked combined deck): one linear back stress
+    "combined_linear_kinematic": "&material model = 'combined', kinematic_c = 1000.0, kinematic_gamma = 0.0 /\n",
+    "combined_armstrong_frederick": ("&material model = 'combined', kinematic_c = 20000.0, 2000.0, "
+                                     "kinematic_gamma = 200.0, 0.0 /\n"),
+    "j2_mu_p": ("&tools friction_law = 'power', friction_p_ref = 10.0, friction_m = 0.8, "
+                "friction_mu_min = 0.05, friction_mu_max = 0.3 /\n"),
+}
+
+
+def laws_cost_decks(ctx, names, extra_control=""):
+    """The decks of LAWS_COST_VARIANTS named in NAMES, written under
+    ctx.tmp/laws_cost_decks (pulled 2h instead of 3h), with EXTRA_CONTROL
+    merged into &control; their paths."""
     cdir = os.path.join(ctx.tmp, "laws_cost_decks")
     os.makedirs(cdir, exist_ok=True)
     base = read_doc("input/cc_fig5a_beadA_steel.nml")
-    variants = {
-        "j2": "",
-        "j2_uniform": "&sheet refine_exit = .false. /\n",
-        "combined_no_back_stress": "&material model = 'combined' /\n",
-        "combined_armstrong_frederick": ("&material model = 'combined', kinematic_c = 20000.0, 2000.0, "
-                                         "kinematic_gamma = 200.0, 0.0 /\n"),
-        "j2_mu_p": ("&tools friction_law = 'power', friction_p_ref = 10.0, friction_m = 0.8, "
-                    "friction_mu_min = 0.05, friction_mu_max = 0.3 /\n"),
-    }
     decks = []
-    for name, extra in variants.items():
+    for name in names:
+        extras = [LAWS_COST_VARIANTS[name]] + ([extra_control] if extra_control else [])
         path = os.path.join(cdir, "cc_fig5a_" + name + ".nml")
         text = base
         # merge the variant's group into the deck's own
-        if extra:
+        for extra in extras:
+            if not extra:
+                continue
             group = extra.split()[0]
             body = extra[len(group):].rstrip().rstrip("/").strip()
             if group not in text:
@@ -613,11 +616,66 @@ def gen_laws_cost(ctx):
         with open(path, "w") as out:
             out.write(text)
         decks.append(path)
+    return decks
+
+
+def gen_laws_cost(ctx):
+    """docs/performance.md: the cost of the material and friction laws on
+    input/cc_fig5a_beadA_steel.nml (bead A, clamped, mu = 0.1, the contact
+    section): as shipped (the paper's J2 law), the same on its 80 uniform
+    elements (refine_exit = .false.: the mesh of the runs with back
+    stresses, which do not tear), with model = 'combined' and no back
+    stress (law_combined's return mapping, the same material), with the
+    one linear back stress of input/cc_fig5a_beadA_steel_kinematic.nml,
+    with two Armstrong-Frederick back stresses (C = 20000, 2000 MPa,
+    gamma = 200, 0), and with the power-law mu(p) of friction_power; each
+    stopped at 2h of pull, one thread, five runs, scripts/bench.sh
+    --markdown, verbatim."""
+    decks = laws_cost_decks(ctx, list(LAWS_COST_VARIANTS))
     # five runs: single runs of the same deck vary by up to 20% on the
     # 2-core virtual machine of docs/performance.md
     out = script_output(ctx, ["scripts/bench.sh", "--markdown", "-n", "5", "--threads", "1",
                               "--no-scaling", "--keep", os.path.join(ctx.tmp, "laws_cost")] + decks)
     return lambda raw: out
+
+
+def gen_laws_yielding(ctx):
+    """docs/performance.md: how many material points yield in an assembly
+    of the laws' cost decks on the 80 uniform elements (the J2 law, one
+    linear back stress, two Armstrong-Frederick back stresses), from the
+    counts that &control log_residuals prints per Newton iteration
+    (converged increments; the failed attempts' are not printed)."""
+    names = ["j2_uniform", "combined_linear_kinematic", "combined_armstrong_frederick"]
+    decks = laws_cost_decks(ctx, names, "&control log_residuals = .true. /\n")
+    odir = os.path.join(ctx.tmp, "laws_yielding")
+    os.makedirs(odir, exist_ok=True)
+    rows = []
+    first = None
+    for name, deck in zip(names, decks):
+        summary, status = run_deck(ctx.program, deck, odir, name, one_thread=True)
+        if status != 0 or not summary:
+            raise RuntimeError(f"laws_yielding: {name} exited with status {status}")
+        counts = []
+        npt = None
+        with open(os.path.join(odir, name + ".log"), encoding="utf-8") as log:
+            for line in log:
+                m = re.search(r"THICKNESS_POINTS\s*=\s*(\d+)", line)
+                if m:
+                    npt = int(m.group(1))
+                w = line.split()
+                if w and w[0] == "plastic:":
+                    counts += [int(x) for x in w[1:]]
+        if npt is None or not counts:
+            raise RuntimeError(f"laws_yielding: {name}: no thickness_points echo or no counts")
+        points = npt*4*int(summary["elements"])
+        mean = sum(counts)/len(counts)
+        first = first if first is not None else mean
+        rows.append([name, summary["elements"], str(len(counts)), Num(mean, ".0f"),
+                     Num(mean/points, ".3f"), Num(mean/first, ".2f")])
+    header = ["deck (cc_fig5a_...)", "elements", "assemblies", "yielding points per assembly",
+              "of all points", "against j2_uniform"]
+    align = ["---", "---:", "---:", "---:", "---:", "---:"]
+    return lambda raw: markdown_table(header, align, rows, raw)
 
 
 def gen_neck_cost(ctx):
@@ -1066,6 +1124,8 @@ GENERATORS = {
     "laws_cost": ("docs/performance.md", gen_laws_cost,
                   "scripts/bench.sh on cc_fig5a with the J2 law, combined hardening with and without"
                   " back stresses, and mu(p) (not checkable)"),
+    "laws_yielding": ("docs/performance.md", gen_laws_yielding,
+                      "the yielding points per assembly of the laws' cost decks on 80 elements"),
     "bead_cards": ("docs/user-guide.md", gen_bead_cards,
                    "scripts/sweep.sh over lock_depth on fig9c and scripts/bead_curves.sh on it"),
     "ccx_combined_element": ("docs/continuum-check.md", gen_ccx_combined_element,
