@@ -589,6 +589,11 @@ LAWS_COST_VARIANTS = {
 }
 
 
+# Gauss stations per element (src/hermite.f90 n_gauss), each with
+# thickness_points material points
+GAUSS_STATIONS = 4
+
+
 def laws_cost_decks(ctx, names, extra_control=""):
     """The decks of LAWS_COST_VARIANTS named in NAMES, written under
     ctx.tmp/laws_cost_decks (pulled 2h instead of 3h), with EXTRA_CONTROL
@@ -667,12 +672,12 @@ def gen_laws_yielding(ctx):
                     counts += [int(x) for x in w[1:]]
         if npt is None or not counts:
             raise RuntimeError(f"laws_yielding: {name}: no thickness_points echo or no counts")
-        points = npt*4*int(summary["elements"])
+        points = npt*GAUSS_STATIONS*int(summary["elements"])
         mean = sum(counts)/len(counts)
         first = first if first is not None else mean
         rows.append([name, summary["elements"], str(len(counts)), Num(mean, ".0f"),
                      Num(mean/points, ".3f"), Num(mean/first, ".2f")])
-    header = ["deck (cc_fig5a_...)", "elements", "assemblies", "yielding points per assembly",
+    header = ["deck (cc_fig5a_...)", "elements", "assemblies of the accepted attempts", "yielding points per assembly",
               "of all points", "against j2_uniform"]
     align = ["---", "---:", "---:", "---:", "---:", "---:"]
     return lambda raw: markdown_table(header, align, rows, raw)

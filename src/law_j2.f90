@@ -97,7 +97,9 @@ contains
       integer :: k
       ! the law is homogeneous and additive: the start strain and the
       ! position do not enter; its return starts from the elastic trial
-      ! (starts_from_trial is .false.: dp_start is never given)
+      ! (starts_from_trial is .false.: dp_start comes as zeros, ignored;
+      ! the empty test marks it used, as associate cannot take an absent
+      ! optional)
       associate (unused => stran11, unused2 => zbar)
       end associate
       if (present(dp_start)) then
@@ -145,6 +147,7 @@ contains
       real(dp), intent(in) :: stran11(n), dstran(n, 2), zbar(n)
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in), optional :: dp_start(n)
+      ! (dp_start: as in j2_update)
       associate (unused => stran11, unused2 => zbar)
       end associate
       if (present(dp_start)) then

@@ -35,8 +35,10 @@
 !>   equivalent plastic strain increment says so (starts_from_trial); the
 !>   section then hands it the increment its last trial reached at each
 !>   point (dp_start), where the return may start.  It is a start only: the
-!>   root, and with it the end state, is the same from any start to the
-!>   return's tolerance.
+!>   root, and with it the stress, the strains and the state, is the same
+!>   from any start to the return's tolerance; values a law caches from
+!>   its last iterate rather than the root (law_combined's H' and the
+!>   continuum tangent built on it) move with the start within about 1e-6.
 module material_law
    use kinds, only: dp
    implicit none

@@ -116,7 +116,9 @@ contains
       real(dp) :: p_n, p
       integer :: k
       ! the thickness strain is driven from the elastic trial
-      ! (starts_from_trial is .false.: dp_start is never given)
+      ! (starts_from_trial is .false.: dp_start comes as zeros, ignored;
+      ! the empty test marks it used, as associate cannot take an absent
+      ! optional)
       if (present(dp_start)) then
       end if
       do k = 1, n

@@ -120,8 +120,10 @@ contains
       npt = size(wz)
       last = ih_statev - 1 + mat%n_state
       ! where a law that asks for it may start its return: the equivalent
-      ! plastic strain increment of the last trial (after a commit or a
-      ! cut-back the histories' difference is <= 0: none)
+      ! plastic strain increment of the last trial (after a commit the
+      ! histories' difference is <= 0: none; after a cut-back it is the
+      ! rejected attempt's, usually above the root: the return's bracket
+      ! takes it)
       ieq = col_eqps(mat)
       do k = 1, npt
          dp_start(k) = 0.0_dp

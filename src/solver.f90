@@ -80,6 +80,8 @@ contains
    !> (h1, c1, gp) is then not to be used.
    !>  m      [in]  model
    !>  s      [in,out] state: h1, c1 and gp are rewritten from hn, cn and u1
+   !>                (a law with starts_from_trial first reads h1's equivalent
+   !>                plastic strain, the last trial's: section_response)
    !>  ld     [in]  applied loads and tool position
    !>  kb     [in,out] band tangent (allocated by the caller), overwritten
    !>  r      [out] residual f_int - f_ext at every dof (reactions at fixed dofs)
@@ -171,8 +173,9 @@ contains
    !>  e       [in]  the element
    !>  shifts  [in]  vertical shift of tool 1, 2
    !>  u1      [in]  trial dofs of the whole sheet
-   !>  hn, h1  [in], [out] the element's converged and trial section histories
-   !>                (npt, n_hist, n_gauss)
+   !>  hn, h1  [in], [in,out] the element's converged and trial section
+   !>                histories (npt, n_hist, n_gauss); h1 on entry the last
+   !>                trial's (section_response)
    !>  cn, c1  [in], [out] its stations' converged and trial contact histories
    !>                (n_chist, n_gauss, 2 tools)
    !>  gp      [out] per Gauss point: eps, rho, N, M
@@ -510,6 +513,8 @@ contains
    !>              integrated to the trial state by contact_station), gpn <- gp;
    !>              h1, c1 and gp are exchanged with them, so they hold the
    !>              previous converged state until the next assemble rewrites them
+   !>              (whose equivalent plastic strain is not above hn's: the next
+   !>              section update starts its return at the trial, section_response)
    !>  shift [in] the lower tool's rise at this state
    subroutine commit_state(m, s, shift)
       type(model_type), intent(in) :: m
@@ -531,7 +536,8 @@ contains
       ! the trial arrays become the converged ones by exchanging them, not
       ! by copying (the history is the largest array of a run): the trial
       ! arrays then hold the previous converged state, which the next
-      ! assemble overwrites before anything reads them
+      ! assemble overwrites; it reads only their equivalent plastic strain
+      ! first, not above the converged one (section_response's dp_start)
       call move_alloc(s%hn, swap4)
       call move_alloc(s%h1, s%hn)
       call move_alloc(swap4, s%h1)
