@@ -683,6 +683,76 @@ def gen_laws_yielding(ctx):
     return lambda raw: markdown_table(header, align, rows, raw)
 
 
+# the continuum-check decks compared with the tools on the reference and
+# on the current faces (theory 5.1), and the pulls they are read at (h)
+FACES_DECKS = ["cc_fig5a_beadA_steel", "cc_fig6_beadB_steel", "cc_double_bead",
+               "cc_fig9c_beadA_steel_free", "cc_round_bead", "cc_stepped_bead"]
+FACES_PULLS = [0.5, 1.0, 2.0]
+
+
+def pull_value_at(path, column, delta):
+    """Column COLUMN (1-based) of the pull.dat at PATH, interpolated linearly
+    in column 1 (delta/h) at DELTA; None when the run did not get there."""
+    rows = []
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            w = line.split()
+            rows.append((float(w[0]), float(w[column - 1])))
+    # the continuum's first row is its summary of the largest force: keep
+    # the rows in pull order from the first increasing run
+    rows = [r for r in rows if math.isfinite(r[1])]
+    rows.sort(key=lambda r: r[0])
+    for (x0, y0), (x1, y1) in zip(rows, rows[1:]):
+        if x0 <= delta <= x1 and x1 > x0:
+            return y0 + (y1 - y0)*(delta - x0)/(x1 - x0)
+    return None
+
+
+def gen_contact_faces(ctx):
+    """docs/validation.md: the continuum-check decks FACES_DECKS as shipped
+    (the tools on the reference faces) and with &tools contact_faces =
+    'current' (theory 5.1): restraining force and lift over the kept
+    continuum's at FACES_PULLS h of pull (pull.dat columns 3 and 8, linear
+    in the pull), the tearing point against the continuum's neck (its
+    largest restraining force, where it necks), and the energy balance."""
+    jobs = []
+    for deck in FACES_DECKS:
+        text = read_doc(f"input/{deck}.nml")
+        if "\n&tools\n" not in text:
+            raise RuntimeError(f"input/{deck}.nml: no &tools line of its own")
+        jobs.append((f"faces_{deck}_reference", f"input/{deck}.nml"))
+        jobs.append((f"faces_{deck}_current",
+                     text.replace("\n&tools\n", "\n&tools\n   contact_faces = 'current'\n", 1)))
+    res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    rows = []
+    for deck in FACES_DECKS:
+        cdir = os.path.join(ROOT, "docs", "validation", "continuum", deck)
+        cont = read_summary(os.path.join(cdir, "continuum_summary.txt"))
+        neck = real(cont, "max_restraining_force_at_delta_over_h")
+        if deck.endswith("_free") or deck in ("cc_round_bead", "cc_stepped_bead"):
+            neck = None
+        cpull = os.path.join(cdir, "pull.dat")
+        for faces in ("reference", "current"):
+            name = f"faces_{deck}_{faces}"
+            ppull = os.path.join(ctx.tmp, name, "pull.dat")
+            ratios = []
+            for column in (3, 8):
+                for delta in FACES_PULLS:
+                    ratios.append(Num(quotient(pull_value_at(ppull, column, delta),
+                                               pull_value_at(cpull, column, delta)), ".3f"))
+            summary = res[name]
+            rows.append([deck, faces] + ratios
+                        + [Num(real(summary, "tearing_delta_over_h"), ".2f"), Num(neck, ".2f"),
+                           Num(real(summary, "energy_balance_error"), ".1e")])
+    header = (["deck", "faces"] + [f"N / continuum at {d:g}h" for d in FACES_PULLS]
+              + [f"lift / continuum at {d:g}h" for d in FACES_PULLS]
+              + ["tearing Δ/h", "continuum's neck Δ/h", "energy balance"])
+    align = ["---", "---"] + ["---:"] * (2*len(FACES_PULLS) + 3)
+    return lambda raw: markdown_table(header, align, rows, raw)
+
+
 def gen_neck_cost(ctx):
     """docs/performance.md: the clamped steel continuum-check decks stopped
     at the tearing point, on their uniform mesh (refine_exit = .false.), on
@@ -1129,6 +1199,8 @@ GENERATORS = {
     "laws_cost": ("docs/performance.md", gen_laws_cost,
                   "scripts/bench.sh on cc_fig5a with the J2 law, combined hardening with and without"
                   " back stresses, and mu(p) (not checkable)"),
+    "contact_faces": ("docs/validation.md", gen_contact_faces,
+                      "the continuum-check decks with the tools on the reference and on the current faces"),
     "laws_yielding": ("docs/performance.md", gen_laws_yielding,
                       "the yielding points per assembly of the laws' cost decks on 80 elements"),
     "bead_cards": ("docs/user-guide.md", gen_bead_cards,

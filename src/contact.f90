@@ -22,6 +22,19 @@
 !> switch the tangent between 0 and k from one Newton iterate to the next.
 !> delta = 0 is the paper's sharp onset.  Penalty energy: k G(d), G' = g.
 !>
+!> With &tools contact_faces = 'current' the tool meets the sheet's face at
+!> its current place rather than at the reference half-thickness h/2 from
+!> the centreline (docs/theory.md §5.1): the caller passes the face's
+!> offset toward the centreline (face_offset: the section kept in volume,
+!> each face from the trial stretch and bending strain, so that the concave
+!> face of a bend, the one a tool radius presses, thickens and the convex
+!> one thins), and the penetration is d - offset; the derivatives of the
+!> force with respect to d (dfdd, dfndd) let the caller add the offset's
+!> dependence on the dofs to the tangent.  The history keeps the offset
+!> and the work of the normal force on its change (ich_offset,
+!> ich_offwork), an energy the shell's external work does not hold
+!> (module energy).
+!>
 !> The contact history of a station is a column ch(n_chist) (one per Gauss
 !> station and tool in the model's state); its entries are named by the
 !> ich_* constants below, which every module uses instead of numbers.
@@ -33,9 +46,10 @@ module contact
    use friction_law, only: friction_law_type
    implicit none
    private
-   public :: contact_station, penalty_energy
+   public :: contact_station, penalty_energy, face_offset
    public :: n_chist, ich_active, ich_slip, ich_slip_max, ich_sense, ich_position, &
-             ich_dissipation, ich_penetration, ich_traction, ich_hint, ich_pressure, ich_mu
+             ich_dissipation, ich_penetration, ich_traction, ich_hint, ich_pressure, ich_mu, &
+             ich_offset, ich_offwork
 
    !> Layout of a station's contact history column ch(n_chist):
    !> 1 when the station is in contact (trial) or was (converged), else 0
@@ -60,8 +74,12 @@ module contact
    integer, parameter :: ich_hint = 10
    !> the contact pressure p, MPa, and the friction coefficient mu(p) in use
    integer, parameter :: ich_pressure = 11, ich_mu = 12
+   !> the face offset toward the centreline at the state (contact_faces =
+   !> 'current'; 0 otherwise), mm, and the work of the normal force on its
+   !> change since the start, int fn d(offset), N (per unit reference length)
+   integer, parameter :: ich_offset = 13, ich_offwork = 14
    !> length of the column
-   integer, parameter :: n_chist = 12
+   integer, parameter :: n_chist = 14
 
 contains
 
@@ -81,26 +99,42 @@ contains
    !>  fn     [out] the normal force k g(d) >= 0 alone (the pressure the
    !>               contact section puts on the sheet's face)
    !>  dfn    [out] d fn / d p = -k g'(d) n
+   !>  offset [in]  optional: the face's offset toward the centreline, mm
+   !>               (module header); absent: 0
+   !>  dfdd   [out] optional: d f / d d, the force's derivative with respect
+   !>               to the penetration at fixed p (d offset = -d d)
+   !>  dfndd  [out] optional: d fn / d d = k g'(d)
    pure subroutine contact_station(tool, shift, k, delta, fric, face_stretch, p, chn, ch1, f, kf, &
-                                   fn, dfn)
+                                   fn, dfn, offset, dfdd, dfndd)
       type(tool_type), intent(in) :: tool
       class(friction_law_type), intent(in) :: fric
       real(dp), intent(in) :: shift, k, delta, face_stretch, p(2), chn(:)
       real(dp), intent(out) :: ch1(:), f(2), kf(2, 2), fn, dfn(2)
+      real(dp), intent(in), optional :: offset
+      real(dp), intent(out), optional :: dfdd(2), dfndd
       real(dp) :: prel(2), d, n(2), t(2), curv, ds, sense, ut, dslip(2), tt, pn, dpn
-      real(dp) :: dut(2), dold, a, utm, trac_old, mu, pressure, dtt_dpn, dtt_dut
+      real(dp) :: dut(2), dold, a, utm, trac_old, mu, pressure, dtt_dpn, dtt_dut, dut_dd
       integer :: seg
       prel = [p(1), p(2) - shift]
       call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg, hint=nint(chn(ich_hint)))
+      if (present(offset)) d = d - offset
       f = 0.0_dp
       kf = 0.0_dp
       fn = 0.0_dp
       dfn = 0.0_dp
+      if (present(dfdd)) dfdd = 0.0_dp
+      if (present(dfndd)) dfndd = 0.0_dp
       ch1 = 0.0_dp
       ch1(ich_position:ich_position + 1) = prel
       ch1(ich_dissipation) = chn(ich_dissipation)
       ch1(ich_penetration) = d
       ch1(ich_hint) = real(seg, dp)
+      ! the offset and the work of the normal force on its change
+      ! (trapezoidal over the increment; the converged force from the
+      ! converged pressure and face stretch)
+      if (present(offset)) ch1(ich_offset) = offset
+      ch1(ich_offwork) = chn(ich_offwork) &
+                         + 0.5_dp*chn(ich_pressure)*face_stretch*(ch1(ich_offset) - chn(ich_offset))
       if (d <= 0.0_dp) return
       ch1(ich_active) = 1.0_dp
       ! normal part: f = pn n with pn = k g(d), dd/dp = -n, dn/dp = curv (I - n n^T)
@@ -115,7 +149,10 @@ contains
       kf = -dpn*outer(n, n) + pn*curv*outer(t, t)
       fn = pn
       dfn = -dpn*n
+      if (present(dfdd)) dfdd = dpn*n
+      if (present(dfndd)) dfndd = dpn
       ch1(ich_pressure) = pn/face_stretch
+      ch1(ich_offwork) = ch1(ich_offwork) + 0.5_dp*pn*(ch1(ich_offset) - chn(ich_offset))
       if (.not. fric%active()) return
       ! friction, integrated from the last converged state to the trial one
       ! like a return mapping (docs/theory.md §6): the slip of the increment
@@ -123,6 +160,8 @@ contains
       ! t (1 - curv n.(p - p_old)) because t turns on an arc
       ds = dot_product(t, prel - chn(ich_position:ich_position + 1))
       dslip = t*(1.0_dp - curv*dot_product(n, prel - chn(ich_position:ich_position + 1)))
+      ! d ds / d d at fixed p (only where the fraction a below depends on d)
+      dut_dd = 0.0_dp
       if (chn(ich_active) < 0.5_dp) then
          ! the station entered contact within the increment: its history
          ! starts there, at the fraction a = d/(d - d_old) of the motion
@@ -131,6 +170,7 @@ contains
          dold = min(chn(ich_penetration), 0.0_dp)
          a = d/(d - dold)
          dslip = a*dslip + ds*((dold/(d - dold))/(d - dold))*n
+         dut_dd = -ds*((dold/(d - dold))/(d - dold))
          ds = a*ds
       end if
       if (chn(ich_active) < 0.5_dp .or. abs(chn(ich_sense)) < 0.5_dp) then
@@ -146,6 +186,8 @@ contains
          trac_old = chn(ich_traction)
       end if
       dut = sense*dslip
+      ! (u_T = sense ds + const in both branches above)
+      dut_dd = sense*dut_dd
       ch1(ich_slip) = ut
       ! the reversal point of the trial path: the converged one already holds
       ! the largest converged u_T, and u_T is linear along the increment
@@ -162,7 +204,47 @@ contains
       ! d(tt t)/dp = t (mu sense)(fr dpn dd/dp + pn dfr dut) + tt dt/dp,
       ! dd/dp = -n, dt/dp = -curv n t^T
       kf = kf - sense*outer(t, -dtt_dpn*dpn*n + dtt_dut*dut) + tt*curv*outer(n, t)
+      if (present(dfdd)) dfdd = dfdd - sense*(dtt_dpn*dpn + dtt_dut*dut_dd)*t
    end subroutine contact_station
+
+   !> FACE_OFFSET: the offset of a face toward the centreline with &tools
+   !> contact_faces = 'current' (docs/theory.md §5.1), and its derivatives.
+   !> The section keeps its volume (plane strain, plastically
+   !> incompressible; the elastic part, ~1e-3 of the offset, left out) with
+   !> the fibre stretch Lambda = lambda + rho zbar of the section module:
+   !> d zbar/dz = 1/Lambda, so lambda zbar + rho zbar^2/2 = z and the face
+   !> z = +-h/2 lies at |zbar| = h/(lambda + sqrt(lambda^2 +- rho h)); the
+   !> offset is h/2 - |zbar|, h/2 (1 - 1/lambda) on a straight sheet.  Past
+   !> lambda^2 +- rho h = lambda^2/4 (a bend of radius ~ h/2: a neck's
+   !> wrinkle) the root is held at lambda/2.
+   !>  h      [in]  reference thickness
+   !>  eps    [in]  axial strain lambda - 1
+   !>  rho    [in]  bending strain
+   !>  top    [in]  the top face (z = +h/2, against tool 1), else the bottom
+   !>  off    [out] the offset toward the centreline (< 0: the face lies
+   !>               beyond h/2)
+   !>  doff_deps, doff_drho [out] its derivatives in eps and rho
+   pure subroutine face_offset(h, eps, rho, top, off, doff_deps, doff_drho)
+      real(dp), intent(in) :: h, eps, rho
+      logical, intent(in) :: top
+      real(dp), intent(out) :: off, doff_deps, doff_drho
+      real(dp) :: lam, s, arg, q, dd
+      lam = 1.0_dp + eps
+      s = merge(1.0_dp, -1.0_dp, top)
+      arg = lam*lam + s*rho*h
+      if (arg >= 0.25_dp*lam*lam) then
+         q = sqrt(arg)
+         dd = lam + q
+         off = 0.5_dp*h - h/dd
+         doff_deps = h/dd**2*(1.0_dp + lam/q)
+         doff_drho = h/dd**2*(0.5_dp*s*h/q)
+      else
+         dd = 1.5_dp*lam
+         off = 0.5_dp*h - h/dd
+         doff_deps = h/dd**2*1.5_dp
+         doff_drho = 0.0_dp
+      end if
+   end subroutine face_offset
 
    !> PENALTY_ENERGY: stored energy k G(d) of a station penetrating by d
    !> (G' = g of the smoothed onset; G = d^2/2 for delta = 0).

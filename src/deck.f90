@@ -19,7 +19,7 @@
 !>   &tools     bead, r1, r2, b1, b2, h1, h2, upper_profile, lower_profile,
 !>              penalty, friction, friction_eps, contact_smoothing, friction_law,
 !>              friction_file, friction_p_ref, friction_m, friction_mu_min,
-!>              friction_mu_max
+!>              friction_mu_max, contact_faces
 !>   &loading   lock_depth, pull_distance, initial_increment,
 !>              min_increment, max_increment, max_iterations, tolerance,
 !>              max_force_change, squeeze_force_change, step_tolerance
@@ -143,6 +143,7 @@ module deck
       real(dp) :: friction_mu_max = 1.0_dp            ! 'power': upper bound of mu
       real(dp) :: friction_eps = 0.0333_dp            ! eps of (4.3), units of h
       real(dp) :: contact_smoothing = 0.0_dp          ! penalty onset smoothed over this penetration, units of h (0: sharp, as the paper)
+      character(len=16) :: contact_faces = 'reference' ! 'reference' (h/2 from the centreline, the paper) | 'current' (theory §5.1)
       ! &loading
       real(dp) :: lock_depth = unset                  ! h1 + r1 with bead = 'rectangular', 0 with 'none', required with 'profile'
       real(dp) :: pull_distance = unset               ! 10 h
@@ -260,6 +261,7 @@ contains
       call check_text_chars(errs, at(p, 'material', 'curve_file'), d%curve_file)
       call check_text_chars(errs, at(p, 'material', 'drawing_direction'), d%drawing_direction)
       call check_text_chars(errs, at(p, 'tools', 'friction_law'), d%friction_law)
+      call check_text_chars(errs, at(p, 'tools', 'contact_faces'), d%contact_faces)
       call check_text_chars(errs, at(p, 'tools', 'friction_file'), d%friction_file)
       call check_text_chars(errs, at(p, 'tools', 'bead'), d%bead)
       call check_text_chars(errs, at(p, 'tools', 'upper_profile'), d%upper_profile)
@@ -416,6 +418,8 @@ contains
       call check_real(errs, at(p, 'tools', 'friction_eps'), d%friction_eps, &
                       lo=0.0_dp, lo_open=.true.)
       call check_real(errs, at(p, 'tools', 'contact_smoothing'), d%contact_smoothing, lo=0.0_dp)
+      call check_choice(errs, at(p, 'tools', 'contact_faces'), d%contact_faces, &
+                        [character(len=16) :: 'reference', 'current'])
 
       if (d%left_edge == 'free' .and. d%bead == 'none') &
          call fail(errs, at(p, 'sheet', 'left_edge'), "'free' needs tools (bead /= 'none'): "// &

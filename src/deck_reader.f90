@@ -101,6 +101,7 @@ contains
       d%model = lower(adjustl(d%model))
       d%drawing_direction = lower(adjustl(d%drawing_direction))
       d%friction_law = lower(adjustl(d%friction_law))
+      d%contact_faces = lower(adjustl(d%contact_faces))
       d%bead = lower(adjustl(d%bead))
       call resolve_defaults(d)
       call validate_deck(d, errs)
@@ -408,12 +409,12 @@ contains
       real(dp) :: r1, r2, b1, b2, h1, h2
       character(len=512) :: upper_profile, lower_profile
       real(dp) :: penalty, friction, friction_eps, contact_smoothing
-      character(len=16) :: friction_law
+      character(len=16) :: friction_law, contact_faces
       character(len=512) :: friction_file
       real(dp) :: friction_p_ref, friction_m, friction_mu_min, friction_mu_max
       namelist /tools/ bead, r1, r2, b1, b2, h1, h2, upper_profile, lower_profile, &
          penalty, friction, friction_eps, contact_smoothing, friction_law, friction_file, &
-         friction_p_ref, friction_m, friction_mu_min, friction_mu_max
+         friction_p_ref, friction_m, friction_mu_min, friction_mu_max, contact_faces
 
       bead = d%bead
       r1 = d%r1
@@ -434,6 +435,7 @@ contains
       friction_m = d%friction_m
       friction_mu_min = d%friction_mu_min
       friction_mu_max = d%friction_mu_max
+      contact_faces = d%contact_faces
       select case (action)
       case (act_read_text)
          read (text, nml=tools, iostat=ios, iomsg=msg)
@@ -461,6 +463,7 @@ contains
       d%friction_m = friction_m
       d%friction_mu_min = friction_mu_min
       d%friction_mu_max = friction_mu_max
+      d%contact_faces = contact_faces
    end subroutine nml_tools
 
    !> nml_loading -- namelist &loading (arguments as group_io).

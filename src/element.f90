@@ -21,7 +21,7 @@ module element
    use material_law, only: material_law_type
    implicit none
    private
-   public :: element_internal, element_gradients, v_dofs, w_dofs
+   public :: element_internal, element_gradients, outer8, v_dofs, w_dofs
    public :: n_gp, igp_strain, igp_curvature, igp_force, igp_moment, igp_gradient_energy
 
    integer, parameter :: v_dofs(4) = [1, 2, 5, 6], w_dofs(4) = [3, 4, 7, 8]

@@ -6,7 +6,7 @@ module energy
    use kinds, only: dp
    use hermite, only: n_gauss, gauss_wt
    use section, only: ih_sse, ih_spd, ih_work22, ih_statev
-   use contact, only: penalty_energy, ich_penetration, ich_dissipation
+   use contact, only: penalty_energy, ich_penetration, ich_dissipation, ich_offwork
    use model, only: model_type, state_type, load_type
    use element, only: igp_gradient_energy
    use record, only: run_record
@@ -46,14 +46,19 @@ contains
    !> integrated over the sheet), penalty (k d^2/2 over the contact stations)
    !> and friction dissipation; and the work of the contact section's
    !> thickness stress on the thickness strain (docs/theory.md §12), an input
-   !> of energy the shell's external work does not hold:
-   !>   external work + energy(5) = energy(1) + ... + energy(4).
+   !> of energy the shell's external work does not hold; and with
+   !> contact_faces = 'current' the work of the tools' normal forces on the
+   !> faces' offsets toward the centreline (contact module), which the
+   !> penalty energy k G(d - offset) gives up as the faces move and which
+   !> the shell's equations do not see either:
+   !>   external work + energy(5) - energy(6) = energy(1) + ... + energy(4).
    !>  m, s    [in]  model and converged state
-   !>  energy  [out] (elastic, plastic, penalty, friction, normal-stress work)
+   !>  energy  [out] (elastic, plastic, penalty, friction, normal-stress work,
+   !>                offset work)
    pure subroutine energy_totals(m, s, energy)
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
-      real(dp), intent(out) :: energy(5)
+      real(dp), intent(out) :: energy(6)
       real(dp) :: dv
       integer :: e, ig, it
       energy = 0.0_dp
@@ -70,6 +75,7 @@ contains
                   energy(3) = energy(3) + dv*penalty_energy(m%penalty, m%contact_smoothing, &
                                                            s%cn(ich_penetration, ig, e, it))
                   energy(4) = energy(4) + dv*s%cn(ich_dissipation, ig, e, it)
+                  energy(6) = energy(6) + dv*s%cn(ich_offwork, ig, e, it)
                end do
             end if
          end do

@@ -31,6 +31,7 @@ module model
       type(tool_type) :: tool(2)             ! 1 upper (fixed), 2 lower (moves by H)
       real(dp) :: penalty = 0.0_dp           ! k, N/mm^3 (force per ref length per mm)
       real(dp) :: contact_smoothing = 0.0_dp ! delta, mm: smoothed penalty onset
+      logical :: current_faces = .false.     ! the tools meet the sheet's current faces (docs/theory.md §5.1)
       class(friction_law_type), allocatable :: friction ! the friction law (module friction_law)
       logical :: contact_section = .false.   ! the tools' normal forces load the section (docs/theory.md §12)
       real(dp) :: gradient = 0.0_dp          ! c of the strain-gradient term (1/2) c (d lambda/ds)^2, N mm (0: none)

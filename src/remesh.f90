@@ -35,7 +35,7 @@ module remesh
    use kinematics, only: strain_measures
    use section, only: ih_strain, ih_zbar, ih_statev
    use contact, only: ich_position, ich_penetration, ich_hint, ich_active, ich_slip, ich_slip_max, &
-                      ich_sense, ich_traction
+                      ich_sense, ich_traction, ich_offset, face_offset
    use tool_distance, only: tool_gap
    use tools, only: seg_arc
    use model, only: model_type, state_type, load_type
@@ -219,7 +219,8 @@ contains
       real(dp), allocatable :: xn(:), un(:), u1n(:), hn(:, :, :, :), h1n(:, :, :, :), cn(:, :, :, :), &
                                c1n(:, :, :, :), gpn(:, :, :), gpt(:, :, :), ind(:, :)
       real(dp) :: le, lf, xi, w, ulf(8), g(4), gm(4, 8), eps, rho, deps(4), drho(4), &
-                  d2eps(4, 4), d2rho(4, 4), nv(4), dn(4), d2n(4), pos(2), shifts(2), d, nrm(2), curv, t(2)
+                  d2eps(4, 4), d2rho(4, 4), nv(4), dn(4), d2n(4), pos(2), shifts(2), d, nrm(2), curv, t(2), &
+                  off, ode, odr
       integer :: e, f, j, ig, i1, i2, it, n_new, seg, stat
       n_new = sum(pieces)
       ! every array of the split mesh at once, before anything is changed
@@ -274,6 +275,12 @@ contains
                   if (.not. m%has_tools) cycle
                   call tool_gap(m%tool(it), pos(1), pos(2) - shifts(it), d, nrm, curv, t, seg, &
                                 hint=nint(cn(ich_hint, ig, f, it)))
+                  ! the face offset of contact_faces = 'current' at the new
+                  ! station (as contact_station measures the penetration)
+                  off = 0.0_dp
+                  if (m%current_faces) call face_offset(m%thickness, eps, rho, it == 1, off, ode, odr)
+                  d = d - off
+                  cn(ich_offset, ig, f, it) = off
                   cn(ich_penetration, ig, f, it) = d
                   cn(ich_hint, ig, f, it) = real(seg, dp)
                   ! in contact as its own gap says (contact_station's

@@ -95,6 +95,7 @@ contains
       m%penalty = d%penalty*d%youngs_modulus/h
       if (allocated(fric)) call move_alloc(fric, m%friction)
       m%contact_smoothing = d%contact_smoothing*h
+      m%current_faces = d%contact_faces == 'current'
       m%left_edge_free = d%left_edge == 'free'
       m%contact_section = d%normal_stress == 'contact'
       ! the strain-gradient term (docs/theory.md §12.7): strain_gradient

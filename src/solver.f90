@@ -14,10 +14,11 @@ module solver
    use hermite, only: n_gauss, gauss_xi, gauss_wt, hermite_shape
    use mesh, only: element_dofs, half_band, node_dof, dof_v_slope, dof_w_slope, is_slope_dof
    use band, only: band_matrix, band_init, band_zero, band_add, band_fix_dof, band_solve
-   use element, only: element_internal, v_dofs, w_dofs
+   use element, only: element_internal, v_dofs, w_dofs, element_gradients, outer8
+   use kinematics, only: strain_measures
    use section, only: section_localization, section_update_zbar, col_eqps, ih_spd, ih_strain
    use model, only: model_type, state_type, load_type
-   use contact, only: contact_station, ich_active
+   use contact, only: contact_station, face_offset, ich_active
    implicit none
    private
    public :: newton_result, assemble, newton_solve, commit_state, max_newton_history, &
@@ -202,6 +203,9 @@ contains
       real(dp), intent(out) :: rf(8)
       real(dp) :: le, ul(8), nv(4), dn(4), d2n(4), nm(2, 8), p(2), pg(2, n_gauss)
       real(dp) :: fc(2, n_gauss, 2), kc(2, 2, n_gauss, 2), dv, fn, dfn(2)
+      ! the face offset (docs/theory.md §5.1) and what carries it into the tangent
+      real(dp) :: offset(n_gauss, 2), doff(8, n_gauss, 2), dfdd(2, n_gauss, 2), dfndd, gk(4), gmk(4, 8), &
+                  epsk, rhok, depsk(4), drhok(4), d2ek(4, 4), d2rk(4, 4), ode, odr
       real(dp) :: nmg(2, 8, n_gauss), face_force(2, n_gauss), dface_force(8, 2, n_gauss)
       integer :: ig, it, dofs(8)
       pnewdt = 1.0_dp
@@ -227,15 +231,30 @@ contains
             p = matmul(nm, ul)
             p(1) = p(1) + m%x(e) + gauss_xi(ig)*le
             pg(:, ig) = p
+            ! the faces' offsets toward the centreline and their gradients on
+            ! the element dofs (docs/theory.md §5.1, contact's face_offset):
+            ! each face from the trial stretch and bending strain
+            offset(ig, :) = 0.0_dp
+            doff(:, ig, :) = 0.0_dp
+            if (m%current_faces) then
+               call element_gradients(gauss_xi(ig), le, ul, gk, gmk)
+               call strain_measures(gk, epsk, rhok, depsk, drhok, d2ek, d2rk)
+               do it = 1, 2
+                  call face_offset(m%thickness, epsk, rhok, it == 1, offset(ig, it), ode, odr)
+                  doff(:, ig, it) = matmul(ode*depsk + odr*drhok, gmk)
+               end do
+            end if
             do it = 1, 2
                ! the face against the tool: the top (tool 1) or the bottom
                ! (tool 2), its converged stretch exp(ln Lambda)
                call contact_station(m%tool(it), shifts(it), m%penalty, m%contact_smoothing, m%friction, &
                                     exp(hn(merge(size(hn, 1), 1, it == 1), ih_strain, ig)), p, cn(:, ig, it), &
-                                    c1(:, ig, it), fc(:, ig, it), kc(:, :, ig, it), fn, dfn)
+                                    c1(:, ig, it), fc(:, ig, it), kc(:, :, ig, it), fn, dfn, &
+                                    offset=offset(ig, it), dfdd=dfdd(:, ig, it), dfndd=dfndd)
                if (m%contact_section .and. fn > 0.0_dp) then
                   face_force(3 - it, ig) = fn
-                  dface_force(:, 3 - it, ig) = matmul(dfn, nm)
+                  ! through the position and through the face offset
+                  dface_force(:, 3 - it, ig) = matmul(dfn, nm) - dfndd*doff(:, ig, it)
                end if
             end do
          end do
@@ -259,6 +278,8 @@ contains
                rf = rf + station_roundoff(nmg(:, :, ig), kc(:, :, ig, it), pg(:, ig), dv)
                ft(:, ig, it) = dv*fc(:, ig, it)
                ke = ke - dv*matmul(transpose(nmg(:, :, ig)), matmul(kc(:, :, ig, it), nmg(:, :, ig)))
+               ! the force's dependence on the face offset: d = d(p) - offset(u_e)
+               if (m%current_faces) ke = ke + dv*outer8(matmul(dfdd(:, ig, it), nmg(:, :, ig)), doff(:, ig, it))
             end do
          end do
       end if

@@ -100,7 +100,7 @@ contains
       integer, intent(out) :: ios
       character(len=:), allocatable, intent(out) :: iomsg
       character(len=:), allocatable :: text
-      real(dp) :: h, eh, fsteady, steady_at, thinning, energy(5), pull_work, de(5), stored
+      real(dp) :: h, eh, fsteady, steady_at, thinning, energy(6), pull_work, de(6), stored
       logical :: split
       logical :: steady
       character(len=32) :: status
@@ -183,8 +183,8 @@ contains
       call put(text, 'max_penetration_over_h', rec%max_penetration, m%has_tools)
       call put(text, 'final_delta_over_h', merge(rec%pull_delta(max(rec%n_pull, 1)), &
                               0.0_dp, rec%n_pull > 0)/h, .true.)
-      ! energy balance: external work + normal-stress work = elastic + plastic
-      ! + penalty + friction (energy_totals)
+      ! energy balance: external work + normal-stress work - offset work =
+      ! elastic + plastic + penalty + friction (energy_totals)
       energy = 0.0_dp
       if (allocated(s%hn)) call energy_totals(m, s, energy)
       call put(text, 'energy_external_work', rec%work, .true.)
@@ -201,14 +201,15 @@ contains
       call put(text, 'energy_penalty', energy(3), .true.)
       call put(text, 'energy_friction', energy(4), .true.)
       call put(text, 'energy_normal_stress', energy(5), .true.)
+      call put(text, 'energy_offset_work', energy(6), m%current_faces)
       ! (the splits' share of the energies is booked apart, theory §7.6)
-      call put(text, 'energy_balance_error', (rec%work + energy(5) - sum(energy(1:4)) + rec%split%energy_change) &
+      call put(text, 'energy_balance_error', (rec%work + energy(5) - energy(6) - sum(energy(1:4)) + rec%split%energy_change) &
                               /max(abs(rec%work), tiny(1.0_dp)), rec%work > 0.0_dp)
       pull_work = rec%work - rec%work_pull_start
       de = energy - rec%energy_pull_start
       call put(text, 'pull_work', pull_work, rec%n_pull > 0)
       call put(text, 'pull_energy_balance_error', &
-                              (pull_work + de(5) - sum(de(1:4)) + rec%split%energy_change) &
+                              (pull_work + de(5) - de(6) - sum(de(1:4)) + rec%split%energy_change) &
                               /max(abs(pull_work), tiny(1.0_dp)), &
                               rec%n_pull > 0 .and. pull_work > 0.0_dp)
       ! the neck's refined zone (&sheet refine_neck, docs/theory.md §7.5)
