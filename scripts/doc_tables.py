@@ -753,6 +753,44 @@ def gen_contact_faces(ctx):
     return lambda raw: markdown_table(header, align, rows, raw)
 
 
+# the long pulls of the exit-state decks (the continuum's pull.dat kept
+# beside its exit state) and the pulls they are read at (h)
+LONG_PULL_DECKS = ["exit_fig9c_beadA_steel_free", "exit_fig9d_beadB_steel_free"]
+LONG_PULLS = [2.0, 8.0, 16.0, 24.0, 32.0]
+
+
+def gen_long_pull(ctx):
+    """docs/validation.md: the exit-state decks (free edges pulled 36h and
+    48h) as shipped and with &tools contact_faces = 'current': restraining
+    force and lift over the kept default-mesh continuum's
+    (docs/validation/continuum/<deck>/pull.dat) at LONG_PULLS h, linear in
+    the pull."""
+    jobs = []
+    for deck in LONG_PULL_DECKS:
+        text = read_doc(f"input/{deck}.nml")
+        if "\n&tools\n" not in text:
+            raise RuntimeError(f"input/{deck}.nml: no &tools line of its own")
+        jobs.append((f"long_{deck}_reference", f"input/{deck}.nml"))
+        jobs.append((f"long_{deck}_current",
+                     text.replace("\n&tools\n", "\n&tools\n   contact_faces = 'current'\n", 1)))
+    run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    rows = []
+    for deck in LONG_PULL_DECKS:
+        cpull = os.path.join(ROOT, "docs", "validation", "continuum", deck, "pull.dat")
+        for faces in ("reference", "current"):
+            ppull = os.path.join(ctx.tmp, f"long_{deck}_{faces}", "pull.dat")
+            ratios = []
+            for column in (3, 8):
+                for delta in LONG_PULLS:
+                    ratios.append(Num(quotient(pull_value_at(ppull, column, delta),
+                                               pull_value_at(cpull, column, delta)), ".3f"))
+            rows.append([deck, faces] + ratios)
+    header = (["deck", "faces"] + [f"N / continuum at {d:g}h" for d in LONG_PULLS]
+              + [f"lift / continuum at {d:g}h" for d in LONG_PULLS])
+    align = ["---", "---"] + ["---:"] * (2*len(LONG_PULLS))
+    return lambda raw: markdown_table(header, align, rows, raw)
+
+
 def gen_neck_cost(ctx):
     """docs/performance.md: the clamped steel continuum-check decks stopped
     at the tearing point, on their uniform mesh (refine_exit = .false.), on
@@ -1199,6 +1237,8 @@ GENERATORS = {
     "laws_cost": ("docs/performance.md", gen_laws_cost,
                   "scripts/bench.sh on cc_fig5a with the J2 law, combined hardening with and without"
                   " back stresses, and mu(p) (not checkable)"),
+    "long_pull": ("docs/validation.md", gen_long_pull,
+                  "the exit-state decks' long pulls with the tools on the reference and on the current faces"),
     "contact_faces": ("docs/validation.md", gen_contact_faces,
                       "the continuum-check decks with the tools on the reference and on the current faces"),
     "laws_yielding": ("docs/performance.md", gen_laws_yielding,
