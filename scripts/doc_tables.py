@@ -690,6 +690,21 @@ FACES_DECKS = ["cc_fig5a_beadA_steel", "cc_fig6_beadB_steel", "cc_double_bead",
 FACES_PULLS = [0.5, 1.0, 2.0]
 
 
+def faces_jobs(decks, prefix):
+    """run_many's jobs for each input/<deck>.nml of DECKS as shipped (name
+    PREFIX_<deck>_reference) and with &tools contact_faces = 'current'
+    (PREFIX_<deck>_current)."""
+    jobs = []
+    for deck in decks:
+        text = read_doc(f"input/{deck}.nml")
+        if "\n&tools\n" not in text:
+            raise RuntimeError(f"input/{deck}.nml: no &tools line of its own")
+        jobs.append((f"{prefix}_{deck}_reference", f"input/{deck}.nml"))
+        jobs.append((f"{prefix}_{deck}_current",
+                     text.replace("\n&tools\n", "\n&tools\n   contact_faces = 'current'\n", 1)))
+    return jobs
+
+
 def pull_value_at(path, column, delta):
     """Column COLUMN (1-based) of the pull.dat at PATH, interpolated linearly
     in column 1 (delta/h) at DELTA; None when the run did not get there."""
@@ -717,15 +732,7 @@ def gen_contact_faces(ctx):
     continuum's at FACES_PULLS h of pull (pull.dat columns 3 and 8, linear
     in the pull), the tearing point against the continuum's neck (its
     largest restraining force, where it necks), and the energy balance."""
-    jobs = []
-    for deck in FACES_DECKS:
-        text = read_doc(f"input/{deck}.nml")
-        if "\n&tools\n" not in text:
-            raise RuntimeError(f"input/{deck}.nml: no &tools line of its own")
-        jobs.append((f"faces_{deck}_reference", f"input/{deck}.nml"))
-        jobs.append((f"faces_{deck}_current",
-                     text.replace("\n&tools\n", "\n&tools\n   contact_faces = 'current'\n", 1)))
-    res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    res = run_many(ctx.program, faces_jobs(FACES_DECKS, "faces"), ctx.tmp, ctx.workers)
     rows = []
     for deck in FACES_DECKS:
         cdir = os.path.join(ROOT, "docs", "validation", "continuum", deck)
@@ -765,15 +772,7 @@ def gen_long_pull(ctx):
     force and lift over the kept default-mesh continuum's
     (docs/validation/continuum/<deck>/pull.dat) at LONG_PULLS h, linear in
     the pull."""
-    jobs = []
-    for deck in LONG_PULL_DECKS:
-        text = read_doc(f"input/{deck}.nml")
-        if "\n&tools\n" not in text:
-            raise RuntimeError(f"input/{deck}.nml: no &tools line of its own")
-        jobs.append((f"long_{deck}_reference", f"input/{deck}.nml"))
-        jobs.append((f"long_{deck}_current",
-                     text.replace("\n&tools\n", "\n&tools\n   contact_faces = 'current'\n", 1)))
-    run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    run_many(ctx.program, faces_jobs(LONG_PULL_DECKS, "long"), ctx.tmp, ctx.workers)
     rows = []
     for deck in LONG_PULL_DECKS:
         cpull = os.path.join(ROOT, "docs", "validation", "continuum", deck, "pull.dat")
