@@ -233,9 +233,9 @@ contains
             pg(:, ig) = p
             ! the faces' offsets toward the centreline and their gradients on
             ! the element dofs (docs/theory.md §5.1, contact's face_offset):
-            ! each face from the trial stretch and bending strain
+            ! each face from the trial stretch and bending strain (the
+            ! reference faces: none, and no gradient to carry)
             offset(ig, :) = 0.0_dp
-            doff(:, ig, :) = 0.0_dp
             if (m%current_faces) then
                call element_gradients(gauss_xi(ig), le, ul, gk, gmk)
                call strain_measures(gk, epsk, rhok, depsk, drhok, d2ek, d2rk)
@@ -253,8 +253,10 @@ contains
                                     offset=offset(ig, it), dfdd=dfdd(:, ig, it), dfndd=dfndd)
                if (m%contact_section .and. fn > 0.0_dp) then
                   face_force(3 - it, ig) = fn
-                  ! through the position and through the face offset
-                  dface_force(:, 3 - it, ig) = matmul(dfn, nm) - dfndd*doff(:, ig, it)
+                  dface_force(:, 3 - it, ig) = matmul(dfn, nm)
+                  ! and through the face offset
+                  if (m%current_faces) dface_force(:, 3 - it, ig) = dface_force(:, 3 - it, ig) &
+                                                                   - dfndd*doff(:, ig, it)
                end if
             end do
          end do
