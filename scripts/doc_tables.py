@@ -951,7 +951,12 @@ LIFT_TRACE_OPTIONS = ["--offset", "0.05", "--also", "normal_stress=none", "--als
 # --offset needs a rectangular bead
 LIFT_TRACE_CASES = [("cc_fig5a_beadA_steel", LIFT_TRACE_OPTIONS), ("cc_fig6_beadB_steel", LIFT_TRACE_OPTIONS),
                     ("cc_round_bead", ["--at", "0.5,1,2", "--also", "normal_stress=none"]),
-                    ("cc_stepped_bead", ["--at", "0.5,1,2", "--also", "normal_stress=none"])]
+                    ("cc_stepped_bead", ["--at", "0.5,1,2", "--also", "normal_stress=none"]),
+                    # the free edge: its lift at full lock is the binder faces' squeeze,
+                    # which the contact stiffness sets
+                    ("cc_fig9c_beadA_steel_free", ["--at", "0.5,1,2", "--also", "normal_stress=none",
+                                                   "--also", "contact_faces=current", "--also", "penalty=0.01",
+                                                   "--also", "penalty=0.2"])]
 
 
 def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
@@ -971,7 +976,7 @@ def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
 
 def gen_lift_trace(ctx):
     """docs/validation.md: scripts/lift_trace.sh on the clamped steel beads A
-    and B and on the round and stepped profile beads against the continuum runs kept in
+    and B, the round and stepped profile beads and the free-edge bead A against the continuum runs kept in
     docs/validation/continuum/<deck>/lift_trace/ (no CalculiX run), verbatim."""
     text = kept_continuum_runs(ctx, "scripts/lift_trace.sh", LIFT_TRACE_CASES, "--ccx",
                                "docs/validation/continuum/{deck}/lift_trace", "lift")
@@ -1242,7 +1247,8 @@ GENERATORS = {
     "ccx_combined_element": ("docs/continuum-check.md", gen_ccx_combined_element,
                              "tests/ccx_combined_element.sh: CalculiX's combined hardening in one element"),
     "lift_trace": ("docs/validation.md", gen_lift_trace,
-                   "scripts/lift_trace.sh on cc_fig5a and cc_fig6 against their kept continuum runs"),
+                   ("scripts/lift_trace.sh on the clamped steel beads, the round and stepped beads "
+                    "and the free-edge bead A against their kept continuum runs")),
     "exit_state": ("docs/validation.md", gen_exit_state,
                    "scripts/exit_state_check.sh on the free-edge exit-state decks against their kept continuum exit states"),
     "laws_table": ("docs/validation.md", gen_laws_table,
