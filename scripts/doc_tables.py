@@ -956,7 +956,9 @@ LIFT_TRACE_CASES = [("cc_fig5a_beadA_steel", LIFT_TRACE_OPTIONS), ("cc_fig6_bead
                     # which the contact stiffness sets
                     ("cc_fig9c_beadA_steel_free", ["--at", "0.5,1,2", "--also", "normal_stress=none",
                                                    "--also", "contact_faces=current", "--also", "penalty=0.01",
-                                                   "--also", "penalty=0.2"])]
+                                                   "--also", "penalty=0.2"]),
+                    # ... against its continuum with the contact slope 1e4 (kept apart)
+                    ("cc_fig9c_beadA_steel_free", ["--at", "0.5,1,2"], "lift_trace_slope1e4")]
 
 
 def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
@@ -966,9 +968,17 @@ def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
     after its command line, as one code block; WORK names the scratch
     folder."""
     parts = []
-    for deck, options in cases:
-        args = [script, f"input/{deck}.nml", kept_flag, kept_path.format(deck=deck)] + options
-        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, work, deck),
+    for case in cases:
+        # (deck, options) or (deck, options, the kept folder in place of
+        # KEPT_PATH's last part)
+        deck, options = case[:2]
+        kept = kept_path.format(deck=deck)
+        scratch = deck
+        if len(case) > 2:
+            kept = os.path.join(os.path.dirname(kept), case[2])
+            scratch = deck + "_" + case[2]
+        args = [script, f"input/{deck}.nml", kept_flag, kept] + options
+        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, work, scratch),
                                              "--bin", ctx.program] + args[1:])
         parts.append("$ " + " ".join(args) + "\n" + out)
     return "```\n" + "\n\n".join(parts) + "\n```"
