@@ -691,7 +691,8 @@ def gen_laws_yielding(ctx):
 # pull's forces compare a necked sheet)
 FACES_DECKS = ["cc_fig5a_beadA_steel", "cc_fig6_beadB_steel", "cc_beadA_steel_mu0",
                "cc_fig5b_beadA_brass", "cc_beadA_aluminium", "cc_beadB_aluminium", "cc_beadB_hss",
-               "cc_double_bead", "cc_fig9c_beadA_steel_free", "cc_round_bead", "cc_stepped_bead"]
+               "cc_double_bead", "cc_fig9c_beadA_steel_free", "cc_fig9c_beadA_steel_free_gap",
+               "cc_round_bead", "cc_stepped_bead"]
 # of these, the decks whose continuum necks in the pull (the others draw
 # on: their largest restraining force is no neck)
 FACES_NECKING = {"cc_fig5a_beadA_steel", "cc_fig6_beadB_steel", "cc_beadA_steel_mu0",
