@@ -959,7 +959,9 @@ LIFT_TRACE_CASES = [("cc_fig5a_beadA_steel", LIFT_TRACE_OPTIONS), ("cc_fig6_bead
                                                    "--also", "contact_faces=current", "--also", "penalty=0.01",
                                                    "--also", "penalty=0.2"]),
                     # ... against its continuum with the contact slope 1e4 (kept apart)
-                    ("cc_fig9c_beadA_steel_free", ["--at", "0.5,1,2"], "lift_trace_slope1e4")]
+                    ("cc_fig9c_beadA_steel_free", ["--at", "0.5,1,2"], "lift_trace_slope1e4"),
+                    # ... and with the binder gap that leaves it unsqueezed
+                    ("cc_fig9c_beadA_steel_free_gap", ["--at", "0.5,1,2", "--also", "contact_faces=current"])]
 
 
 def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
@@ -1259,7 +1261,7 @@ GENERATORS = {
                              "tests/ccx_combined_element.sh: CalculiX's combined hardening in one element"),
     "lift_trace": ("docs/validation.md", gen_lift_trace,
                    ("scripts/lift_trace.sh on the clamped steel beads, the round and stepped beads "
-                    "and the free-edge bead A against their kept continuum runs")),
+                    "and the free-edge bead A with and without its binder gap against their kept continuum runs")),
     "exit_state": ("docs/validation.md", gen_exit_state,
                    "scripts/exit_state_check.sh on the free-edge exit-state decks against their kept continuum exit states"),
     "laws_table": ("docs/validation.md", gen_laws_table,
