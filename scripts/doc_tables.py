@@ -961,7 +961,8 @@ LIFT_TRACE_CASES = [("cc_fig5a_beadA_steel", LIFT_TRACE_OPTIONS), ("cc_fig6_bead
                     # ... against its continuum with the contact slope 1e4 (kept apart)
                     ("cc_fig9c_beadA_steel_free", ["--at", "0.5,1,2"], "lift_trace_slope1e4"),
                     # ... and with the binder gap that leaves it unsqueezed
-                    ("cc_fig9c_beadA_steel_free_gap", ["--at", "0.5,1,2", "--also", "contact_faces=current"])]
+                    ("cc_fig9c_beadA_steel_free_gap", ["--at", "0.5,1,2", "--also", "contact_faces=current",
+                                                       "--also", "n_elements=320", "--also", "penalty=0.2"])]
 
 
 def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
@@ -1016,6 +1017,28 @@ def gen_exit_state(ctx):
                                EXIT_STATE_CASES, "--continuum",
                                "docs/validation/continuum/{deck}/exit_state.txt", "exit_state")
     return lambda raw: text
+
+
+# the continuum's mesh study of bead B's exit state: a 12h pull of the
+# exit-state deck, its continuum with 4 and 8 elements per h kept beside it
+EXIT_MESH_DECK = "docs/validation/continuum/mesh_study/exit_fig9d_beadB_steel_free_pull12h.nml"
+EXIT_MESH_KEPT = [(4, "docs/validation/continuum/mesh_study/exit_fig9d_pull12h_perh4.txt"),
+                  (8, "docs/validation/continuum/mesh_study/exit_fig9d_pull12h_perh8.txt")]
+
+
+def gen_exit_state_mesh(ctx):
+    """docs/validation.md: scripts/exit_state_check.sh on EXIT_MESH_DECK against
+    its continuum exit states with 4 and 8 elements per h along the sheet
+    (EXIT_MESH_KEPT; no CalculiX run), verbatim."""
+    parts = []
+    for per_h, kept in EXIT_MESH_KEPT:
+        args = ["scripts/exit_state_check.sh", EXIT_MESH_DECK, "--continuum", kept]
+        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, "exit_mesh", f"perh{per_h}"),
+                                             "--bin", ctx.program] + args[1:])
+        parts.append("$ " + " ".join(args) + "\n" + out)
+    text = "```\n" + "\n\n".join(parts) + "\n```"
+    return lambda raw: text
+
 
 # ---------------------------------------------------------------------------
 # What the laws change (docs/validation.md): the clamped and free beads A and
@@ -1264,6 +1287,9 @@ GENERATORS = {
                     "and the free-edge bead A with and without its binder gap against their kept continuum runs")),
     "exit_state": ("docs/validation.md", gen_exit_state,
                    "scripts/exit_state_check.sh on the free-edge exit-state decks against their kept continuum exit states"),
+    "exit_state_mesh": ("docs/validation.md", gen_exit_state_mesh,
+                        "scripts/exit_state_check.sh on bead B's exit-state deck pulled 12h against its"
+                        " continuum with 4 and 8 elements per h (kept)"),
     "laws_table": ("docs/validation.md", gen_laws_table,
                    "the cc_ beads A and B, clamped and free, and fig9d, with published hardening sets and mu(p)"),
     "laws_bead_curves": ("docs/validation.md", gen_laws_bead_curves,
