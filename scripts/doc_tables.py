@@ -955,7 +955,7 @@ LIFT_TRACE_CASES = [("cc_fig5a_beadA_steel", LIFT_TRACE_OPTIONS), ("cc_fig6_bead
                     ("cc_stepped_bead", ["--at", "0.5,1,2", "--also", "normal_stress=none"]),
                     # the free edge: its lift at full lock is the binder faces' squeeze,
                     # which the contact stiffness sets
-                    ("cc_fig9c_beadA_steel_free", ["--at", "0.5,1,2", "--also", "normal_stress=none",
+                    ("cc_fig9c_beadA_steel_free", ["--at", "0.5,1,2", "--offset", "0.05", "--also", "normal_stress=none",
                                                    "--also", "contact_faces=current", "--also", "penalty=0.01",
                                                    "--also", "penalty=0.2"]),
                     # ... against its continuum with the contact slope 1e4 (kept apart)
