@@ -34,7 +34,7 @@ module analysis
                            displacement_error
    use tearing, only: check_localization, check_fold, check_load_maximum, tear_at_snap_back, &
                       element_length_at
-   use energy, only: energy_totals
+   use energy, only: energy_totals, energy_absorbed, n_energy
    use output, only: output_files, write_row, write_strains, write_snapshot, write_progress
    use os, only: stop_requested, signal_name
    use tools, only: tool_level
@@ -473,7 +473,7 @@ contains
       type(run_record), intent(inout) :: rec
       real(dp), allocatable :: x_old(:), motion(:)
       integer, allocatable :: pieces(:)
-      real(dp) :: x_exit, energy_before(6), h
+      real(dp) :: x_exit, energy_before(n_energy), h
       logical :: found
       integer :: first, last
       character(len=:), allocatable :: alloc_msg
@@ -543,9 +543,9 @@ contains
       type(controls_type), intent(in) :: ctl
       type(state_type), intent(inout) :: s
       type(run_record), intent(inout) :: rec
-      real(dp), intent(in) :: energy_before(6)
+      real(dp), intent(in) :: energy_before(n_energy)
       type(reequilibration) :: eq
-      real(dp) :: energy_after(6), force_change
+      real(dp) :: energy_after(n_energy), force_change
       call reequilibrate(m, s, pr%ld, pr%kb, pr%r, ctl%max_iterations, ctl%tolerance, eq)
       rec%newton_iterations = rec%newton_iterations + eq%iterations
       rec%assemblies = rec%assemblies + eq%assemblies
@@ -567,8 +567,8 @@ contains
       end select
       rec%work = rec%work + eq%work_dead
       call energy_totals(m, s, energy_after)
-      rec%split%energy_change = rec%split%energy_change + (sum(energy_after(1:4)) - energy_after(5) + energy_after(6)) &
-                                - (sum(energy_before(1:4)) - energy_before(5) + energy_before(6)) - eq%work_dead
+      rec%split%energy_change = rec%split%energy_change + energy_absorbed(energy_after - energy_before) &
+                                - eq%work_dead
       force_change = pr%r(pr%pulled)/rec%last_conjugate - 1.0_dp
       if (rec%split%count == 1) rec%split%force_change = force_change
       write (output_unit, '(a,i0,a,es9.2,a,f8.5)') '# drawbead: refine_exit: re-equilibrated in ', eq%steps, &

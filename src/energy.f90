@@ -12,7 +12,13 @@ module energy
    use record, only: run_record
    implicit none
    private
-   public :: energy_totals, add_increment_work, stored_plastic_energy
+   public :: energy_totals, energy_absorbed, add_increment_work, stored_plastic_energy
+   public :: n_energy, ien_elastic, ien_plastic, ien_penalty, ien_friction, ien_normal_stress, &
+             ien_offset_work
+
+   !> the entries of energy_totals' array
+   integer, parameter :: ien_elastic = 1, ien_plastic = 2, ien_penalty = 3, ien_friction = 4, &
+                         ien_normal_stress = 5, ien_offset_work = 6, n_energy = 6
 
 contains
 
@@ -51,14 +57,14 @@ contains
    !> faces' offsets toward the centreline (contact module), which the
    !> penalty energy k G(d - offset) gives up as the faces move and which
    !> the shell's equations do not see either:
-   !>   external work + energy(5) - energy(6) = energy(1) + ... + energy(4).
+   !>   external work = energy_absorbed(energy).
    !>  m, s    [in]  model and converged state
-   !>  energy  [out] (elastic, plastic, penalty, friction, normal-stress work,
-   !>                offset work)
+   !>  energy  [out] (n_energy) named by the ien_* constants: elastic,
+   !>                plastic, penalty, friction, normal-stress work, offset work
    pure subroutine energy_totals(m, s, energy)
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
-      real(dp), intent(out) :: energy(6)
+      real(dp), intent(out) :: energy(n_energy)
       real(dp) :: dv
       integer :: e, ig, it
       energy = 0.0_dp
@@ -66,21 +72,33 @@ contains
          do ig = 1, n_gauss
             dv = gauss_wt(ig)*(m%x(e + 1) - m%x(e))
             ! elastic: the material's and the strain-gradient term's
-            energy(1) = energy(1) + dv*(dot_product(m%wz, s%hn(:, ih_sse, ig, e)) &
+            energy(ien_elastic) = energy(ien_elastic) + dv*(dot_product(m%wz, s%hn(:, ih_sse, ig, e)) &
                                         + s%gpn(igp_gradient_energy, ig, e))
-            energy(2) = energy(2) + dv*dot_product(m%wz, s%hn(:, ih_spd, ig, e))
-            energy(5) = energy(5) + dv*dot_product(m%wz, s%hn(:, ih_work22, ig, e))
+            energy(ien_plastic) = energy(ien_plastic) + dv*dot_product(m%wz, s%hn(:, ih_spd, ig, e))
+            energy(ien_normal_stress) = energy(ien_normal_stress) &
+                                        + dv*dot_product(m%wz, s%hn(:, ih_work22, ig, e))
             if (m%has_tools) then
                do it = 1, 2
-                  energy(3) = energy(3) + dv*penalty_energy(m%penalty, m%contact_smoothing, &
+                  energy(ien_penalty) = energy(ien_penalty) + dv*penalty_energy(m%penalty, m%contact_smoothing, &
                                                            s%cn(ich_penetration, ig, e, it))
-                  energy(4) = energy(4) + dv*s%cn(ich_dissipation, ig, e, it)
-                  energy(6) = energy(6) + dv*s%cn(ich_offwork, ig, e, it)
+                  energy(ien_friction) = energy(ien_friction) + dv*s%cn(ich_dissipation, ig, e, it)
+                  energy(ien_offset_work) = energy(ien_offset_work) + dv*s%cn(ich_offwork, ig, e, it)
                end do
             end if
          end do
       end do
    end subroutine energy_totals
+
+   !> ENERGY_ABSORBED: what the external work must equal in energy_totals'
+   !> balance (stored and dissipated, less the normal stress's work, plus
+   !> the offset work); linear, so that it also takes differences of totals.
+   !>  energy  [in] (n_energy) energy_totals' array or a difference of two
+   pure function energy_absorbed(energy) result(w)
+      real(dp), intent(in) :: energy(n_energy)
+      real(dp) :: w
+      w = energy(ien_elastic) + energy(ien_plastic) + energy(ien_penalty) + energy(ien_friction) &
+          - energy(ien_normal_stress) + energy(ien_offset_work)
+   end function energy_absorbed
 
    !> STORED_PLASTIC_ENERGY: the part of the plastic work that the material's
    !> state stores rather than dissipates (the back stresses of kinematic

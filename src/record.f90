@@ -102,7 +102,7 @@ module record
       real(dp) :: work = 0.0_dp, work_pull_start = 0.0_dp
       real(dp) :: last_conjugate = 0.0_dp
       real(dp), allocatable :: reactions(:)      ! residual (reactions at fixed dofs), last increment
-      real(dp) :: energy_pull_start(6) = 0.0_dp
+      real(dp) :: energy_pull_start(6) = 0.0_dp   ! energy_totals at the pull's start (energy's n_energy entries)
       ! the neck's refined zone and the first pass that placed it
       type(neck_record) :: neck
       ! the elements split at the exit of the last radius

@@ -7,7 +7,8 @@ module summary
    use model, only: model_type, state_type
    use record, only: run_record, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
                      run_out_of_memory
-   use energy, only: energy_totals, stored_plastic_energy
+   use energy, only: energy_totals, energy_absorbed, stored_plastic_energy, n_energy, ien_elastic, ien_plastic, &
+                     ien_penalty, ien_friction, ien_normal_stress, ien_offset_work
    use output, only: write_text_file
    use text, only: itoa
    implicit none
@@ -100,7 +101,7 @@ contains
       integer, intent(out) :: ios
       character(len=:), allocatable, intent(out) :: iomsg
       character(len=:), allocatable :: text
-      real(dp) :: h, eh, fsteady, steady_at, thinning, energy(6), pull_work, de(6), stored
+      real(dp) :: h, eh, fsteady, steady_at, thinning, energy(n_energy), pull_work, de(n_energy), stored
       logical :: split
       logical :: steady
       character(len=32) :: status
@@ -188,8 +189,8 @@ contains
       energy = 0.0_dp
       if (allocated(s%hn)) call energy_totals(m, s, energy)
       call put(text, 'energy_external_work', rec%work, .true.)
-      call put(text, 'energy_elastic', energy(1), .true.)
-      call put(text, 'energy_plastic', energy(2), .true.)
+      call put(text, 'energy_elastic', energy(ien_elastic), .true.)
+      call put(text, 'energy_plastic', energy(ien_plastic), .true.)
       ! of it stored by the back stresses (kinematic hardening), the rest
       ! dissipated; only for a law that can store energy (the summaries of
       ! the others keep their keys)
@@ -198,18 +199,18 @@ contains
          if (allocated(s%hn)) stored = stored_plastic_energy(m, s)
          call put(text, 'energy_plastic_stored', stored, .true.)
       end if
-      call put(text, 'energy_penalty', energy(3), .true.)
-      call put(text, 'energy_friction', energy(4), .true.)
-      call put(text, 'energy_normal_stress', energy(5), .true.)
-      call put(text, 'energy_offset_work', energy(6), m%current_faces)
+      call put(text, 'energy_penalty', energy(ien_penalty), .true.)
+      call put(text, 'energy_friction', energy(ien_friction), .true.)
+      call put(text, 'energy_normal_stress', energy(ien_normal_stress), .true.)
+      call put(text, 'energy_offset_work', energy(ien_offset_work), m%current_faces)
       ! (the splits' share of the energies is booked apart, theory §7.6)
-      call put(text, 'energy_balance_error', (rec%work + energy(5) - energy(6) - sum(energy(1:4)) + rec%split%energy_change) &
+      call put(text, 'energy_balance_error', (rec%work - energy_absorbed(energy) + rec%split%energy_change) &
                               /max(abs(rec%work), tiny(1.0_dp)), rec%work > 0.0_dp)
       pull_work = rec%work - rec%work_pull_start
       de = energy - rec%energy_pull_start
       call put(text, 'pull_work', pull_work, rec%n_pull > 0)
       call put(text, 'pull_energy_balance_error', &
-                              (pull_work + de(5) - de(6) - sum(de(1:4)) + rec%split%energy_change) &
+                              (pull_work - energy_absorbed(de) + rec%split%energy_change) &
                               /max(abs(pull_work), tiny(1.0_dp)), &
                               rec%n_pull > 0 .and. pull_work > 0.0_dp)
       ! the neck's refined zone (&sheet refine_neck, docs/theory.md §7.5)
