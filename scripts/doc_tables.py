@@ -965,13 +965,25 @@ LIFT_TRACE_CASES = [("cc_fig5a_beadA_steel", LIFT_TRACE_OPTIONS), ("cc_fig6_bead
                                                        "--also", "n_elements=320", "--also", "penalty=0.2"])]
 
 
-def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
-    """The verbatim outputs of SCRIPT run on each (deck, options) of CASES
-    against the continuum results kept under docs/validation/continuum/
-    (KEPT_FLAG KEPT_PATH formatted with the deck; no CalculiX run), each
-    after its command line, as one code block; WORK names the scratch
-    folder."""
+def quoted_runs(ctx, runs, work):
+    """The verbatim outputs of the study scripts' command lines RUNS (each
+    (args, scratch name); the program and an output folder under ctx.tmp
+    WORK/<scratch name> are added), each after its command line, as one
+    code block."""
     parts = []
+    for args, scratch in runs:
+        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, work, scratch),
+                                             "--bin", ctx.program] + args[1:])
+        parts.append("$ " + " ".join(args) + "\n" + out)
+    return "```\n" + "\n\n".join(parts) + "\n```"
+
+
+def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
+    """quoted_runs of SCRIPT on each (deck, options) of CASES against the
+    continuum results kept under docs/validation/continuum/ (KEPT_FLAG
+    KEPT_PATH formatted with the deck; no CalculiX run); WORK names the
+    scratch folder."""
+    runs = []
     for case in cases:
         # (deck, options) or (deck, options, the kept folder in place of
         # KEPT_PATH's last part)
@@ -981,11 +993,8 @@ def kept_continuum_runs(ctx, script, cases, kept_flag, kept_path, work):
         if len(case) > 2:
             kept = os.path.join(os.path.dirname(kept), case[2])
             scratch = deck + "_" + case[2]
-        args = [script, f"input/{deck}.nml", kept_flag, kept] + options
-        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, work, scratch),
-                                             "--bin", ctx.program] + args[1:])
-        parts.append("$ " + " ".join(args) + "\n" + out)
-    return "```\n" + "\n\n".join(parts) + "\n```"
+        runs.append(([script, f"input/{deck}.nml", kept_flag, kept] + options, scratch))
+    return quoted_runs(ctx, runs, work)
 
 
 def gen_lift_trace(ctx):
@@ -1035,13 +1044,8 @@ def gen_exit_state_mesh(ctx):
     """docs/validation.md: scripts/exit_state_check.sh on EXIT_MESH_DECK against
     its continuum exit states with 4 and 8 elements per h along the sheet and
     with the contact slope 1e4 (EXIT_MESH_KEPT; no CalculiX run), verbatim."""
-    parts = []
-    for name, kept, variants in EXIT_MESH_KEPT:
-        args = ["scripts/exit_state_check.sh", EXIT_MESH_DECK, "--continuum", kept] + variants
-        out = script_output(ctx, args[:1] + ["-o", os.path.join(ctx.tmp, "exit_mesh", name),
-                                             "--bin", ctx.program] + args[1:])
-        parts.append("$ " + " ".join(args) + "\n" + out)
-    text = "```\n" + "\n\n".join(parts) + "\n```"
+    text = quoted_runs(ctx, [(["scripts/exit_state_check.sh", EXIT_MESH_DECK, "--continuum", kept] + variants, name)
+                             for name, kept, variants in EXIT_MESH_KEPT], "exit_mesh")
     return lambda raw: text
 
 
