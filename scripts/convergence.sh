@@ -21,7 +21,8 @@
 # Step study (docs/theory.md §8.3): for each deck and each factor f of -f
 # (default "1 0.5": every increment halved) a copy of the deck on its own
 # mesh with every increment control scaled: initial_increment,
-# max_increment, max_force_change and squeeze_force_change times f, and
+# max_increment, branch_increment, max_force_change and
+# squeeze_force_change times f, and
 # step_tolerance (a bound on a local error of second order in the
 # increment) times f^2, each from the deck's value or the default. It runs
 # them into OUTDIR/<deck>_step<f>/ and prints one row per run: increments,
@@ -134,18 +135,20 @@ loading_value() {
 # (step_tolerance by F^2), written to OUT; the defaults are those of
 # docs/input-reference.md
 step_deck() {
-    local deck=$1 f=$2 h ii mi mf sf st lines
+    local deck=$1 f=$2 h ii mi bi mf sf st lines
     h=$(thickness "$deck")
     ii=$(loading_value "$deck" initial_increment "$(awk -v h="${h:-1}" 'BEGIN { print 0.05 * h }')")
     mi=$(loading_value "$deck" max_increment "$(awk -v h="${h:-1}" 'BEGIN { print 0.2 * h }')")
+    bi=$(loading_value "$deck" branch_increment "$(awk -v h="${h:-1}" 'BEGIN { print 0.01 * h }')")
     mf=$(loading_value "$deck" max_force_change 0.1)
     sf=$(loading_value "$deck" squeeze_force_change 0.04)
     st=$(loading_value "$deck" step_tolerance 5e-3)
-    lines=$(awk -v f="$f" -v ii="$ii" -v mi="$mi" -v mf="$mf" -v sf="$sf" -v st="$st" 'BEGIN {
+    lines=$(awk -v f="$f" -v ii="$ii" -v mi="$mi" -v bi="$bi" -v mf="$mf" -v sf="$sf" -v st="$st" 'BEGIN {
         printf "   initial_increment = %.8g\\n   max_increment = %.8g\\n", ii * f, mi * f
+        printf "   branch_increment = %.8g\\n", bi * f
         printf "   max_force_change = %.8g\\n   squeeze_force_change = %.8g\\n", mf * f, sf * f
         printf "   step_tolerance = %.8g", st * f * f }')
-    sed -e '/^ *\(initial_increment\|max_increment\|max_force_change\|squeeze_force_change\|step_tolerance\) *=/d' \
+    sed -e '/^ *\(initial_increment\|max_increment\|branch_increment\|max_force_change\|squeeze_force_change\|step_tolerance\) *=/d' \
         -e "s/^&loading.*/&\n$lines/" "$deck" > "$3"
 }
 

@@ -71,7 +71,7 @@ for _group, _names in ((b'control', b'title output_dir stop_at_localization tear
                         b'friction friction_eps contact_smoothing'),
                        (b'loading', b'lock_depth pull_distance initial_increment min_increment '
                         b'max_increment max_iterations tolerance squeeze_force_change '
-                        b'max_force_change')):
+                        b'max_force_change branch_increment')):
     for _name in _names.split():
         GROUP_OF[_name] = _group
 # names a rename may put in place of another: the variables, the groups,

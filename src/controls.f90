@@ -25,6 +25,7 @@ module controls
       real(dp) :: max_force_change = 0.1_dp        ! target relative change of the phase's force per increment
       real(dp) :: squeeze_force_change = 0.04_dp   ! the same in the binder's squeeze (docs/theory.md §8.3)
       real(dp) :: step_tolerance = 5.0e-3_dp       ! local error of the path per increment (docs/theory.md §8.3; 0: off)
+      real(dp) :: branch_increment = 0.0_dp        ! largest increment past a section's maximum load, mm (§8.3)
       logical :: predictor = .true.                ! extrapolate the last increment's motion
       ! tearing and fold criteria
       logical :: stop_at_localization = .true.

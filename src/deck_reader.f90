@@ -476,11 +476,12 @@ contains
       character(len=echo_len), intent(out) :: lines(echo_rows)
 
       real(dp) :: lock_depth, pull_distance, initial_increment, min_increment, &
-                  max_increment, tolerance, squeeze_force_change, max_force_change, step_tolerance
+                  max_increment, tolerance, squeeze_force_change, max_force_change, step_tolerance, &
+                  branch_increment
       integer :: max_iterations
       namelist /loading/ lock_depth, pull_distance, initial_increment, min_increment, &
          max_increment, max_iterations, tolerance, squeeze_force_change, max_force_change, &
-         step_tolerance
+         step_tolerance, branch_increment
 
       lock_depth = d%lock_depth
       pull_distance = d%pull_distance
@@ -492,6 +493,7 @@ contains
       squeeze_force_change = d%squeeze_force_change
       max_force_change = d%max_force_change
       step_tolerance = d%step_tolerance
+      branch_increment = d%branch_increment
       select case (action)
       case (act_read_text)
          read (text, nml=loading, iostat=ios, iomsg=msg)
@@ -510,6 +512,7 @@ contains
       d%squeeze_force_change = squeeze_force_change
       d%max_force_change = max_force_change
       d%step_tolerance = step_tolerance
+      d%branch_increment = branch_increment
    end subroutine nml_loading
 
    !> put_lines -- write namelist output lines, dropping the blank padding

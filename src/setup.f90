@@ -537,6 +537,7 @@ contains
       ctl%max_force_change = d%max_force_change
       ctl%squeeze_force_change = d%squeeze_force_change
       ctl%step_tolerance = d%step_tolerance
+      ctl%branch_increment = d%branch_increment
       ctl%predictor = d%predictor
       ctl%stop_at_localization = d%stop_at_localization
       ctl%tearing_criterion = d%tearing_criterion

@@ -15,17 +15,20 @@ module step_control
    private
    public :: judge_force_change, next_increment, cutback_factor, extrapolation_error, judge_error, &
              displacement_error, bound_after_failure, failed_cap, failed_cap_growth, bound_past_section_maximum, &
-             branch_cap
+             branch_early_factor
 
+   !> past a section's maximum load, before the restraining force has turned
+   !> toward its maximum (no split at the exit yet, theory §7.6), the
+   !> increments are at most this many times branch_increment: a sheet
+   !> drawn steadily past its sections' maxima is not near a tearing point
+   !> (bound_past_section_maximum)
+   real(dp), parameter :: branch_early_factor = 2.5_dp
    !> the increment is multiplied by this after a failed or redone increment
    real(dp), parameter :: cutback_factor = 0.25_dp
    !> after a failed attempt of length dt_f the following increments are at
    !> most failed_cap dt_f, the bound growing by failed_cap_growth per
    !> converged increment (bound_after_failure)
    real(dp), parameter :: failed_cap = 0.5_dp, failed_cap_growth = 1.1_dp
-   !> while pulling past a section's maximum load the increments are at
-   !> most branch_cap h (bound_past_section_maximum)
-   real(dp), parameter :: branch_cap = 0.025_dp
    !> an increment whose error estimate exceeds this many times
    !> step_tolerance is redone (its successor would be less than half as long)
    real(dp), parameter :: error_redo_ratio = 4.0_dp
@@ -238,23 +241,29 @@ contains
    !> BOUND_PAST_SECTION_MAXIMUM: while pulling with the load-maximum
    !> criterion, once a station's section tangent has lost positive
    !> definiteness (indicator (7.2) <= 0: the section is past its maximum
-   !> load, under the tool), the increment is at most branch_cap h
-   !> (docs/theory.md §8.3): the path is no longer unique there, and long
-   !> increments land on another branch than short ones.  The caller
-   !> applies it with tools only.
-   !>  ctl      [in]    controls (tearing criterion, min_increment)
+   !> load, under the tool), the increment is at most branch_increment
+   !> once the restraining force has turned toward its maximum, and
+   !> branch_early_factor times it before (docs/theory.md §8.3): the path
+   !> is no longer unique there, and long increments land on another branch
+   !> than short ones.  The caller applies it with tools only.
+   !>  ctl      [in]    controls (tearing criterion, branch_increment,
+   !>                   min_increment)
    !>  phase    [in]    'lock' or 'pull'
    !>  min_ind  [in]    the smallest indicator of the converged state
-   !>  h        [in]    thickness, mm
+   !>  turned   [in]    the force has turned toward its maximum (the
+   !>                   elements at the exit were split, §7.6)
    !>  dt       [inout] the next increment
-   pure subroutine bound_past_section_maximum(ctl, phase, min_ind, h, dt)
+   pure subroutine bound_past_section_maximum(ctl, phase, min_ind, turned, dt)
       type(controls_type), intent(in) :: ctl
       character(len=*), intent(in) :: phase
-      real(dp), intent(in) :: min_ind, h
+      real(dp), intent(in) :: min_ind
+      logical, intent(in) :: turned
       real(dp), intent(inout) :: dt
+      real(dp) :: cap
       if (phase /= phase_pull .or. ctl%tearing_criterion /= 'load_maximum') return
       if (min_ind > 0.0_dp) return
-      dt = max(min(dt, branch_cap*h), ctl%min_increment)
+      cap = merge(1.0_dp, branch_early_factor, turned)*ctl%branch_increment
+      dt = max(min(dt, cap), ctl%min_increment)
    end subroutine bound_past_section_maximum
 
 end module step_control

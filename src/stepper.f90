@@ -399,10 +399,12 @@ contains
    !>  ctl        [in]     controls
    !>  has_tools  [in]     the model has tools (a free strip past its
    !>                      maximum load has one path)
-   pure subroutine size_next_increment(pr, ctl, has_tools)
+   !>  turned     [in]     the restraining force has turned toward its
+   !>                      maximum (the exit's elements were split, §7.6)
+   pure subroutine size_next_increment(pr, ctl, has_tools, turned)
       type(phase_run), intent(inout) :: pr
       type(controls_type), intent(in) :: ctl
-      logical, intent(in) :: has_tools
+      logical, intent(in) :: has_tools, turned
       if (pr%err >= 0.0_dp) then
          pr%dt = next_increment(ctl, pr%dt, pr%force_change, pr%target, pr%force, pr%eh, pr%nr%iterations, &
                                 pr%dt_err)
@@ -410,7 +412,7 @@ contains
          pr%dt = next_increment(ctl, pr%dt, pr%force_change, pr%target, pr%force, pr%eh, pr%nr%iterations)
       end if
       call bound_after_failure(ctl, pr%dt, pr%dt_failed)
-      if (has_tools) call bound_past_section_maximum(ctl, pr%phase, pr%min_ind, pr%h, pr%dt)
+      if (has_tools) call bound_past_section_maximum(ctl, pr%phase, pr%min_ind, turned, pr%dt)
       pr%have_prev = .true.
    end subroutine size_next_increment
 
