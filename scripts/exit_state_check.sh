@@ -28,8 +28,10 @@
 #                     station, in h (default 4)
 #   --also VAR=VALUE  also run the program with the deck variable VAR set
 #                     to VALUE (repeatable: e.g. normal_stress=none,
-#                     n_elements=424) and compare it with the same
-#                     continuum, at its own station (a line each)
+#                     n_elements=424; several in one run separated by
+#                     spaces, "penalty=0.37 contact_smoothing=0.001") and
+#                     compare it with the same continuum, at its own
+#                     station (a line each)
 #   --offset D        also run the program with both tools' centreline
 #                     chains moved by D h toward the tools
 #                     (scripts/lift_trace.sh --offset; repeatable)

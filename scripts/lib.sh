@@ -101,7 +101,8 @@ model_option() {
 variant_option() {
     case $1 in
         --also)
-            [[ $2 =~ ^[a-z_][a-z0-9_]*=[^,]+$ ]] || die "--also needs one VAR=VALUE, not '$2'"
+            [[ $2 =~ ^[a-z_][a-z0-9_]*=[^,\ ]+(\ +[a-z_][a-z0-9_]*=[^,\ ]+)*$ ]] ||
+                die "--also needs VAR=VALUE, or several separated by spaces, not '$2'"
             also+=("$2")
             ;;
         *)
@@ -191,8 +192,10 @@ run_ccx() {
 }
 
 # run_variants ON_RUN: the program on variants of a deck (globals bin,
-# deck, dir, also, offsets, root): with each VAR=VALUE of also[] set
-# (dir/deck_also_K.nml, run into dir/program_also_K) and with both tools'
+# deck, dir, also, offsets, root): with each entry of also[] set, one
+# VAR=VALUE or several separated by spaces ("penalty=0.37
+# contact_smoothing=0.001": one variant with both), (dir/deck_also_K.nml,
+# run into dir/program_also_K) and with both tools'
 # centreline chains moved by each value of offsets[] (in h, toward the
 # tools: lift_trace.py offset-deck, from dir/program/run.log; into
 # dir/program_offset_K). Needs dir/variables.txt (bin --list-variables).
@@ -200,12 +203,14 @@ run_ccx() {
 # written or a run that does not end normally stops the script.
 run_variants() {
     local on_run=$1 k=0 spec off
+    local -a settings
     # shellcheck disable=SC2154 # also and offsets are the caller's
     for spec in "${also[@]}"; do
         k=$((k + 1))
         rm -rf "$dir/sweep"
+        read -ra settings <<<"$spec"
         python3 "$root/scripts/sweep_tool.py" decks "$dir/sweep" "$dir/variables.txt" "$deck" \
-            "$spec" >/dev/null || die "cannot write the deck with $spec"
+            "${settings[@]}" >/dev/null || die "cannot write the deck with $spec"
         mv "$dir/sweep/decks/case_0000.nml" "$dir/deck_also_$k.nml" && rm -rf "$dir/sweep"
         run_variant "$on_run" "also_$k" "$spec" "$spec"
     done

@@ -28,7 +28,8 @@
 #                     --contact-slope 1e4)
 #   --also VAR=VALUE  also run the program with the deck variable VAR set
 #                     to VALUE (repeatable: e.g. normal_stress=none,
-#                     n_elements=320) and compare its lift (a line each)
+#                     n_elements=320; several in one run separated by
+#                     spaces) and compare its lift (a line each)
 #   --offset D        also run the program with both tools' centreline
 #                     chains moved by D h toward the tools (rectangular
 #                     bead: arcs of radius less D h about the same centres,
