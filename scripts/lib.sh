@@ -95,13 +95,14 @@ model_option() {
     model_opts+=("$1" "$2")
 }
 
-# variant_option OPTION VALUE: --also VAR=VALUE (one variable) or --offset D
+# variant_option OPTION VALUE: --also VAR=VALUE (one variable, or several
+# separated by spaces for one variant; a value holds no comma or space) or --offset D
 # (a positive number of h), checked and appended to the caller's array
 # also or offsets (run_variants runs them)
 variant_option() {
     case $1 in
         --also)
-            [[ $2 =~ ^[a-z_][a-z0-9_]*=[^,\ ]+(\ +[a-z_][a-z0-9_]*=[^,\ ]+)*$ ]] ||
+            [[ $2 =~ ^[a-z_][a-z0-9_]*=[^,[:space:]]+(\ +[a-z_][a-z0-9_]*=[^,[:space:]]+)*$ ]] ||
                 die "--also needs VAR=VALUE, or several separated by spaces, not '$2'"
             also+=("$2")
             ;;

@@ -145,7 +145,7 @@ contains
             call split_at_exit(pr, m, ctl, s, rec)
             if (rec%status /= run_ok) return
          end if
-         call size_next_increment(pr, ctl, m%has_tools, rec%split%count > 0)
+         call size_next_increment(pr, ctl, m%has_tools, rec%split%armed)
       end do
    end subroutine run_phase
 

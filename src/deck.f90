@@ -201,9 +201,10 @@ contains
       ! estimate of the step control (step_tolerance) shortens it
       ! (docs/theory.md §8.3: 0.3h moved the frictionless lock forces 0.7%)
       if (is_unset(d%max_increment)) d%max_increment = 0.2_dp*h
-      ! past a section's maximum load the path is resolved on 0.01h: the
-      ! tearing points then move by less than 2% when every increment is
-      ! halved (0.025h: up to 3.2%; docs/theory.md §8.3)
+      ! past a section's maximum load, once the force has turned toward its
+      ! maximum, the path is resolved on 0.01h: the tearing points then move
+      ! by less than 2% when every increment is halved (0.025h: up to 3.2%;
+      ! docs/theory.md §8.3)
       if (is_unset(d%branch_increment)) d%branch_increment = 0.01_dp*h
       if (is_unset(d%initial_increment)) then
          d%initial_increment = 0.05_dp*h
@@ -463,9 +464,11 @@ contains
       ! some 1e5 increments
       call check_real(errs, at(p, 'loading', 'max_increment'), d%max_increment, &
                       lo=1.0e-3_dp*h_ref, lo_open=.false.)
-      ! at least 1e-3 h, as max_increment
+      ! at least 1e-4 h: a step study (scripts/convergence.sh -s -f) can
+      ! scale the default 0.01 h down by 1/64 and more, and past the
+      ! turn a pull to its confirmation stays within some 1e4 increments
       call check_real(errs, at(p, 'loading', 'branch_increment'), d%branch_increment, &
-                      lo=1.0e-3_dp*h_ref, lo_open=.false.)
+                      lo=1.0e-4_dp*h_ref, lo_open=.false.)
       if (is_positive(d%min_increment) .and. is_positive(d%initial_increment)) then
          if (d%initial_increment < d%min_increment) &
             call fail(errs, at(p, 'loading', 'initial_increment'), 'must be >= min_increment = ' &

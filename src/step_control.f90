@@ -18,7 +18,8 @@ module step_control
              branch_early_factor
 
    !> past a section's maximum load, before the restraining force has turned
-   !> toward its maximum (no split at the exit yet, theory §7.6), the
+   !> toward its maximum (the split at the exit not armed, theory §7.6;
+   !> never with refine_neck or a zone of the deck's own), the
    !> increments are at most this many times branch_increment: a sheet
    !> drawn steadily past its sections' maxima is not near a tearing point
    !> (bound_past_section_maximum)
@@ -251,7 +252,7 @@ contains
    !>  phase    [in]    'lock' or 'pull'
    !>  min_ind  [in]    the smallest indicator of the converged state
    !>  turned   [in]    the force has turned toward its maximum (the
-   !>                   elements at the exit were split, §7.6)
+   !>                   split at the exit is armed, §7.6)
    !>  dt       [inout] the next increment
    pure subroutine bound_past_section_maximum(ctl, phase, min_ind, turned, dt)
       type(controls_type), intent(in) :: ctl

@@ -400,7 +400,8 @@ contains
    !>  has_tools  [in]     the model has tools (a free strip past its
    !>                      maximum load has one path)
    !>  turned     [in]     the restraining force has turned toward its
-   !>                      maximum (the exit's elements were split, §7.6)
+   !>                      maximum (the split of §7.6 is armed, whether or
+   !>                      not the mesh at the exit needed it)
    pure subroutine size_next_increment(pr, ctl, has_tools, turned)
       type(phase_run), intent(inout) :: pr
       type(controls_type), intent(in) :: ctl
