@@ -162,6 +162,12 @@ def gen_readme_example(ctx):
     return text
 
 
+# decks whose place of localization round-off picks: the uniform strip, where
+# every element reaches the maximum load together (the -O0 and the -O2
+# builds put it 29h apart; tests/regression/decks.txt skips it too)
+PLACE_BY_ROUND_OFF = {"strip_tension"}
+
+
 def gen_paper_table(ctx):
     """docs/validation.md: every deck of the paper (and the strip), as shipped."""
     jobs = [(d, f"input/{d}.nml") for d in PAPER_DECKS]
@@ -169,8 +175,10 @@ def gen_paper_table(ctx):
     rows = []
     for d in PAPER_DECKS:
         s = res[d]
+        place = ("any (round-off)" if d in PLACE_BY_ROUND_OFF
+                 else Num(real(s, "s_star_over_h"), ".2f"))
         rows.append([d, s["status"], Num(real(s, "delta_cr_over_h"), ".3f"),
-                     Num(real(s, "s_star_over_h"), ".2f"),
+                     place,
                      Num(real(s, "delta_cr_nonlocal_over_h"), ".3f"),
                      Num(real(s, "lock_force_over_Eh"), ".4e"),
                      Num(real(s, "peak_force_over_Eh"), ".4e"),
