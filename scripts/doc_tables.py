@@ -202,6 +202,14 @@ def script_output(ctx, args):
     return proc.stdout.rstrip("\n")
 
 
+def gen_continuum_table(ctx):
+    """docs/validation.md: scripts/validation_table.sh (every case kept under
+    docs/validation/continuum/cc_*, the program with both sections against
+    it), its markdown table verbatim."""
+    text = script_output(ctx, ["scripts/validation_table.sh", "--bin", ctx.program])
+    return lambda raw: text
+
+
 def gen_step_study(ctx):
     """docs/validation.md: scripts/convergence.sh -s (every increment control
     halved) on every paper deck and contact-section deck, verbatim."""
@@ -1267,6 +1275,9 @@ GENERATORS = {
                             "scripts/convergence.sh -m -n \"96 192 384\" on fig9c"),
     "tearing_convergence": ("docs/validation.md", gen_tearing_convergence,
                             "scripts/convergence.sh -m -n \"80 160 320 640\" on the clamped cc_ steel decks, uniform"),
+    "continuum_table": ("docs/validation.md", gen_continuum_table,
+                        "scripts/validation_table.sh: the cc_ cases kept under docs/validation/continuum/"
+                        " against the program with both sections"),
     "tearing_default": ("docs/validation.md", gen_tearing_default,
                         "scripts/convergence.sh -m and -s on the clamped cc_ decks stopped at tearing (refine_exit)"),
     "tearing_friction": ("docs/validation.md", gen_tearing_friction,

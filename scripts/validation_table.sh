@@ -5,7 +5,8 @@
 # program on the same deck (input/<case>.nml) with the paper's section
 # (normal_stress = 'none') and with the contact section ('contact').
 #
-# Usage: scripts/validation_table.sh [--keep DIR] [--figures DIR]
+# Usage: scripts/validation_table.sh [--keep DIR] [--figures DIR] [--bin PATH]
+#   --bin PATH     the program to run (default bin/drawbead, built first)
 #   --keep DIR     keep the program's runs under DIR (default: a temporary
 #                  directory, removed at the end)
 #   --figures DIR  also draw, per case, the continuum and the program with
@@ -25,18 +26,23 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 keep=""
 figures=""
+bin=""
 while (($# > 0)); do
     case $1 in
         --keep) keep=${2:?--keep needs a folder}; shift 2 ;;
         --figures) figures=${2:?--figures needs a folder}; shift 2 ;;
-        *) echo "validation_table.sh: unknown argument '$1' (usage: [--keep DIR] [--figures DIR])" >&2; exit 2 ;;
+        --bin) bin=${2:?--bin needs a program}; shift 2 ;;
+        *) echo "validation_table.sh: unknown argument '$1' (usage: [--keep DIR] [--figures DIR] [--bin PATH])" >&2; exit 2 ;;
     esac
 done
 work=${keep:-$(mktemp -d)}
 [[ -n $keep ]] || trap 'rm -rf "$work"' EXIT
 mkdir -p "$work"
 cd "$root"
-make -s >/dev/null
+if [[ -z $bin ]]; then
+    make -s >/dev/null
+    bin=bin/drawbead
+fi
 for cdir in docs/validation/continuum/cc_*/; do
     case=$(basename "$cdir")
     deck=input/$case.nml
@@ -50,7 +56,7 @@ for cdir in docs/validation/continuum/cc_*/; do
             sed "s/^&sheet/\&sheet\n   normal_stress = '$v'/" "$deck" >"$out/deck.nml"
         fi
         (
-            OMP_NUM_THREADS=1 bin/drawbead "$out/deck.nml" -o "$out/run" >"$out/log" 2>&1 || true
+            OMP_NUM_THREADS=1 "$bin" "$out/deck.nml" -o "$out/run" >"$out/log" 2>&1 || true
             python3 scripts/continuum_model.py "$out/log" "$out/model" >/dev/null
             python3 scripts/continuum_results.py metrics "$out/run" "$out/model/continuum_model.json" \
                 >"$out/metrics.txt"
