@@ -139,7 +139,7 @@ step_deck() {
     h=$(thickness "$deck")
     ii=$(loading_value "$deck" initial_increment "$(awk -v h="${h:-1}" 'BEGIN { print 0.05 * h }')")
     mi=$(loading_value "$deck" max_increment "$(awk -v h="${h:-1}" 'BEGIN { print 0.2 * h }')")
-    bi=$(loading_value "$deck" branch_increment "$(awk -v h="${h:-1}" 'BEGIN { print 0.01 * h }')")
+    bi=$(loading_value "$deck" branch_increment "$(awk -v h="${h:-1}" 'BEGIN { print 0.008 * h }')")
     mf=$(loading_value "$deck" max_force_change 0.1)
     sf=$(loading_value "$deck" squeeze_force_change 0.04)
     st=$(loading_value "$deck" step_tolerance 5e-3)

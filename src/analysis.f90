@@ -215,7 +215,9 @@ contains
          rec%status = run_no_convergence
          return
       end if
-      pr%dt_failed = pr%dt
+      ! right after a split the attempts fail on the mapped state, not on
+      ! their length (theory §8.3): they do not bound the increments after
+      if (.not. pr%settling) pr%dt_failed = pr%dt
       pr%dt = cutback_factor*pr%dt
       s%u1 = s%u
       if (pr%dt < ctl%min_increment) then
@@ -306,6 +308,7 @@ contains
       pr%dt_prev = pr%dt
       call commit_state(m, s, pr%ld%tool_shift)
       pr%p = pr%p + pr%dt
+      pr%settling = .false.
       rec%increments = rec%increments + 1
    end subroutine commit_increment
 
@@ -518,6 +521,7 @@ contains
       pr%u_prev = s%u - split_field(x_old, pieces, motion)
       pr%nl_old = pack(split_stations(pieces, reshape(pr%nl_old, [1, n_gauss, size(pieces)])), .true.)
       call records_after_split(rec, pieces)
+      pr%settling = .true.
       rec%reactions = pr%r
       rec%last_conjugate = pr%r(pr%pulled)
       pr%force = pr%r(pr%pulled)

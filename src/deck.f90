@@ -151,7 +151,7 @@ module deck
       real(dp) :: initial_increment = unset           ! 0.05 h
       real(dp) :: min_increment = unset               ! 1e-6 h
       real(dp) :: max_increment = unset               ! 0.2 h
-      real(dp) :: branch_increment = unset            ! 0.01 h: largest increment past a section's maximum load
+      real(dp) :: branch_increment = unset            ! 0.008 h: largest increment past a section's maximum load
       integer :: max_iterations = 20
       real(dp) :: tolerance = 1.0e-8_dp               ! relative residual and correction
       real(dp) :: max_force_change = 0.1_dp           ! target relative change of F (lock) or N (pull) per increment
@@ -202,10 +202,10 @@ contains
       ! (docs/theory.md §8.3: 0.3h moved the frictionless lock forces 0.7%)
       if (is_unset(d%max_increment)) d%max_increment = 0.2_dp*h
       ! past a section's maximum load, once the force has turned toward its
-      ! maximum, the path is resolved on 0.01h: the tearing points then move
-      ! by less than 2% when every increment is halved (0.025h: up to 3.2%;
+      ! maximum, the path is resolved on 0.008h: the tearing points then move
+      ! by at most 1.3% when every increment is halved (0.025h: up to 3.2%;
       ! docs/theory.md §8.3)
-      if (is_unset(d%branch_increment)) d%branch_increment = 0.01_dp*h
+      if (is_unset(d%branch_increment)) d%branch_increment = 0.008_dp*h
       if (is_unset(d%initial_increment)) then
          d%initial_increment = 0.05_dp*h
          if (is_positive(d%min_increment)) d%initial_increment = &

@@ -23,7 +23,7 @@ module step_control
    !> increments are at most this many times branch_increment: a sheet
    !> drawn steadily past its sections' maxima is not near a tearing point
    !> (bound_past_section_maximum)
-   real(dp), parameter :: branch_early_factor = 2.5_dp
+   real(dp), parameter :: branch_early_factor = 3.125_dp
    !> the increment is multiplied by this after a failed or redone increment
    real(dp), parameter :: cutback_factor = 0.25_dp
    !> after a failed attempt of length dt_f the following increments are at

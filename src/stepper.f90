@@ -46,6 +46,7 @@ module stepper
       real(dp) :: err_redone = -1.0_dp       ! that of the last attempt redone at this load (< 0: none)
       real(dp) :: prev_conjugate = 0.0_dp    ! the phase's force two converged states back (8.4)
       logical :: have_prev = .false.         ! a converged increment of this phase exists
+      logical :: settling = .false.          ! split, and no increment converged since (§8.3)
       logical :: have_force_prev = .false.   ! prev_conjugate holds a force
       real(dp) :: next_snapshot = 0.0_dp     ! the load of the next strain snapshot
       real(dp) :: h = 0.0_dp, eh = 0.0_dp    ! thickness, E h
