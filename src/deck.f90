@@ -465,7 +465,7 @@ contains
       call check_real(errs, at(p, 'loading', 'max_increment'), d%max_increment, &
                       lo=1.0e-3_dp*h_ref, lo_open=.false.)
       ! at least 1e-4 h: a step study (scripts/convergence.sh -s -f) can
-      ! scale the default 0.01 h down by 1/64 and more, and past the
+      ! scale the default 0.008 h down by 1/64 and more, and past the
       ! turn a pull to its confirmation stays within some 1e4 increments
       call check_real(errs, at(p, 'loading', 'branch_increment'), d%branch_increment, &
                       lo=1.0e-4_dp*h_ref, lo_open=.false.)

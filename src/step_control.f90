@@ -20,8 +20,10 @@ module step_control
    !> past a section's maximum load, before the restraining force has turned
    !> toward its maximum (the split at the exit not armed, theory §7.6;
    !> never with refine_neck or a zone of the deck's own), the
-   !> increments are at most this many times branch_increment: a sheet
-   !> drawn steadily past its sections' maxima is not near a tearing point
+   !> increments are at most this many times branch_increment (0.025 h at
+   !> its default 0.008 h: the bound before branch_increment existed, and
+   !> a step study scales it with the rest): a sheet drawn steadily past
+   !> its sections' maxima is not near a tearing point
    !> (bound_past_section_maximum)
    real(dp), parameter :: branch_early_factor = 3.125_dp
    !> the increment is multiplied by this after a failed or redone increment
