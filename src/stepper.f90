@@ -24,7 +24,7 @@ module stepper
    use record, only: run_record, record_pull, record_lock, run_out_of_memory
    use remesh, only: last_radius_exit, exit_pieces, exit_resplit_before, split_stations
    use tearing, only: strain_limit_indicator, maximum_approaching
-   use step_control, only: next_increment, bound_after_failure, bound_past_section_maximum
+   use step_control, only: next_increment, bound_after_failure, bound_past_section_maximum, past_turned_maximum
    use energy, only: energy_totals, add_increment_work
    implicit none
    private
@@ -394,8 +394,10 @@ contains
 
    !> SIZE_NEXT_INCREMENT: the increment after a converged one (docs/theory.md
    !> §8.3): by the force's change, the error estimate (when there was one)
-   !> and Newton's iterations (step_control's next_increment), bounded after
-   !> a failed attempt and, with tools, past a section's maximum load.
+   !> and Newton's iterations (step_control's next_increment; not past a
+   !> section's maximum once the force has turned, past_turned_maximum),
+   !> bounded after a failed attempt and, with tools, past a section's
+   !> maximum load.
    !>  pr         [in,out] dt set, have_prev .true.
    !>  ctl        [in]     controls
    !>  has_tools  [in]     the model has tools (a free strip past its
@@ -407,11 +409,14 @@ contains
       type(phase_run), intent(inout) :: pr
       type(controls_type), intent(in) :: ctl
       logical, intent(in) :: has_tools, turned
+      logical :: shrink
+      shrink = .not. (has_tools .and. past_turned_maximum(ctl, pr%phase, pr%min_ind, turned))
       if (pr%err >= 0.0_dp) then
          pr%dt = next_increment(ctl, pr%dt, pr%force_change, pr%target, pr%force, pr%eh, pr%nr%iterations, &
-                                pr%dt_err)
+                                pr%dt_err, shrink=shrink)
       else
-         pr%dt = next_increment(ctl, pr%dt, pr%force_change, pr%target, pr%force, pr%eh, pr%nr%iterations)
+         pr%dt = next_increment(ctl, pr%dt, pr%force_change, pr%target, pr%force, pr%eh, pr%nr%iterations, &
+                                shrink=shrink)
       end if
       call bound_after_failure(ctl, pr%dt, pr%dt_failed)
       if (has_tools) call bound_past_section_maximum(ctl, pr%phase, pr%min_ind, turned, pr%dt)
