@@ -961,6 +961,13 @@ def gen_ccx_combined_element(ctx):
     return lambda raw: text
 
 
+def gen_neck_bifurcation(ctx):
+    """docs/theory.md: scripts/neck_bifurcation.py (the long-wave neck of a
+    plane-strain strip against the expansion (12.10)), verbatim."""
+    out = script_output(ctx, ["python3", "scripts/neck_bifurcation.py"])
+    text = "```\n$ scripts/neck_bifurcation.py\n" + out + "\n```"
+    return lambda raw: text
+
 
 # the lift traced tool by tool: the decks and the program variants compared
 LIFT_TRACE_OPTIONS = ["--offset", "0.05", "--also", "normal_stress=none", "--also", "n_elements=240"]
@@ -1315,6 +1322,8 @@ GENERATORS = {
                       "the yielding points per assembly of the laws' cost decks on 80 elements"),
     "bead_cards": ("docs/user-guide.md", gen_bead_cards,
                    "scripts/sweep.sh over lock_depth on fig9c and scripts/bead_curves.sh on it"),
+    "neck_bifurcation": ("docs/theory.md", gen_neck_bifurcation,
+                         "scripts/neck_bifurcation.py: the plane-strain strip's long-wave neck against (12.10)"),
     "ccx_combined_element": ("docs/continuum-check.md", gen_ccx_combined_element,
                              "tests/ccx_combined_element.sh: CalculiX's combined hardening in one element"),
     "lift_trace": ("docs/validation.md", gen_lift_trace,
