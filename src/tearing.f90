@@ -36,7 +36,7 @@ module tearing
    !> about 1% after a flat maximum without any neck, as the tools close
    !> on the wrapped sheet: the continuum's by 0.94% from 90% of full lock
    !> to full lock on bead A with an HSLA steel (thickness strain -0.32 at
-   !> both male corners alike), the program's by 1.2-1.5% on 80-640
+   !> both male corners alike), the program's by 1.1-1.5% on 80-640
    !> elements; where the continuum necks while locking the tension falls
    !> 4.5-10% by full lock.  A maximum of the tension is a neck once it
    !> has fallen lock_force_drop below it (docs/theory.md §7.4)
