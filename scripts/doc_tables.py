@@ -202,6 +202,12 @@ def script_output(ctx, args):
     return proc.stdout.rstrip("\n")
 
 
+def verbatim_block(ctx, args, shown):
+    """The stdout of the command ARGS as a code block under the command
+    line SHOWN."""
+    return "```\n$ " + shown + "\n" + script_output(ctx, args) + "\n```"
+
+
 def gen_continuum_table(ctx):
     """docs/validation.md: scripts/validation_table.sh (every case kept under
     docs/validation/continuum/cc_*, the program with both sections against
@@ -956,16 +962,15 @@ def gen_ccx_combined_element(ctx):
     """docs/continuum-check.md: tests/ccx_combined_element.sh (CalculiX's
     combined hardening in one element against its closed form, and the laws
     the cross-check refuses), verbatim; needs ccx."""
-    out = script_output(ctx, ["bash", "tests/ccx_combined_element.sh", ctx.program])
-    text = "```\n$ tests/ccx_combined_element.sh\n" + out + "\n```"
+    text = verbatim_block(ctx, ["bash", "tests/ccx_combined_element.sh", ctx.program],
+                          "tests/ccx_combined_element.sh")
     return lambda raw: text
 
 
 def gen_neck_bifurcation(ctx):
     """docs/theory.md: scripts/neck_bifurcation.py (the long-wave neck of a
     plane-strain strip against the expansion (12.10)), verbatim."""
-    out = script_output(ctx, ["python3", "scripts/neck_bifurcation.py"])
-    text = "```\n$ scripts/neck_bifurcation.py\n" + out + "\n```"
+    text = verbatim_block(ctx, ["python3", "scripts/neck_bifurcation.py"], "scripts/neck_bifurcation.py")
     return lambda raw: text
 
 

@@ -250,10 +250,43 @@ contains
       if (failed_cap*dt_failed > ctl%max_increment) dt_failed = huge(1.0_dp)
    end subroutine bound_after_failure
 
-   !> BOUND_PAST_SECTION_MAXIMUM: while pulling with the load-maximum
-   !> criterion, once a station's section tangent has lost positive
-   !> definiteness (indicator (7.2) <= 0: the section is past its maximum
-   !> load, under the tool), the increment is at most branch_increment
+   !> PAST_SECTION_MAXIMUM: is the pull past a section's maximum load (the
+   !> smallest indicator (7.2) of the converged state at or below 0: a
+   !> section past its maximum load, under the tool) with the load-maximum
+   !> criterion?  There the path is no longer unique (docs/theory.md §8.3).
+   !>  ctl      [in]  controls (tearing criterion)
+   !>  phase    [in]  'lock' or 'pull'
+   !>  min_ind  [in]  the smallest indicator of the converged state
+   pure logical function past_section_maximum(ctl, phase, min_ind)
+      type(controls_type), intent(in) :: ctl
+      character(len=*), intent(in) :: phase
+      real(dp), intent(in) :: min_ind
+      past_section_maximum = phase == phase_pull .and. ctl%tearing_criterion == 'load_maximum' .and. &
+                             min_ind <= 0.0_dp
+   end function past_section_maximum
+
+   !> PAST_TURNED_MAXIMUM: past_section_maximum once the restraining force
+   !> has turned toward its maximum.  There Newton's iterations are set by
+   !> the thickness points that switch between elastic and plastic from one
+   !> iterate to the next, not by the increment's length (docs/theory.md
+   !> §8.3: on the clamped decks increments below 1e-3 h took 6.6-7.0
+   !> iterations on average, those from 1e-3 h to 4e-3 h 5.3-7.2), so many
+   !> iterations do not shrink the next increment (next_increment's
+   !> shrink).  The caller applies it with tools only.
+   !>  ctl      [in]  controls (tearing criterion)
+   !>  phase    [in]  'lock' or 'pull'
+   !>  min_ind  [in]  the smallest indicator of the converged state
+   !>  turned   [in]  the force has turned toward its maximum (§7.6)
+   pure logical function past_turned_maximum(ctl, phase, min_ind, turned)
+      type(controls_type), intent(in) :: ctl
+      character(len=*), intent(in) :: phase
+      real(dp), intent(in) :: min_ind
+      logical, intent(in) :: turned
+      past_turned_maximum = turned .and. past_section_maximum(ctl, phase, min_ind)
+   end function past_turned_maximum
+
+   !> BOUND_PAST_SECTION_MAXIMUM: past a section's maximum load
+   !> (past_section_maximum) the increment is at most branch_increment
    !> once the restraining force has turned toward its maximum, and
    !> branch_early_factor times it before (docs/theory.md §8.3): the path
    !> is no longer unique there, and long increments land on another branch
@@ -265,29 +298,6 @@ contains
    !>  turned   [in]    the force has turned toward its maximum (the
    !>                   split at the exit is armed, §7.6)
    !>  dt       [inout] the next increment
-   !> PAST_TURNED_MAXIMUM: is the pull past a section's maximum load (the
-   !> smallest indicator (7.2) at or below 0) with the load-maximum
-   !> criterion, once the restraining force has turned toward its maximum?
-   !> There Newton's iterations are set by the thickness points that switch
-   !> between elastic and plastic from one iterate to the next, not by the
-   !> increment's length (docs/theory.md §8.3: on the clamped decks
-   !> increments below 1e-3 h took 6.6-7.0 iterations on average, those
-   !> from 1e-3 h to 4e-3 h 5.3-7.2), so many iterations do not shrink the
-   !> next increment (next_increment's shrink).  The caller applies it with
-   !> tools only.
-   !>  ctl      [in]  controls (tearing criterion)
-   !>  phase    [in]  'lock' or 'pull'
-   !>  min_ind  [in]  the smallest indicator of the converged state
-   !>  turned   [in]  the force has turned toward its maximum (§7.6)
-   pure logical function past_turned_maximum(ctl, phase, min_ind, turned)
-      type(controls_type), intent(in) :: ctl
-      character(len=*), intent(in) :: phase
-      real(dp), intent(in) :: min_ind
-      logical, intent(in) :: turned
-      past_turned_maximum = phase == phase_pull .and. ctl%tearing_criterion == 'load_maximum' .and. &
-                            min_ind <= 0.0_dp .and. turned
-   end function past_turned_maximum
-
    pure subroutine bound_past_section_maximum(ctl, phase, min_ind, turned, dt)
       type(controls_type), intent(in) :: ctl
       character(len=*), intent(in) :: phase
@@ -295,8 +305,7 @@ contains
       logical, intent(in) :: turned
       real(dp), intent(inout) :: dt
       real(dp) :: cap
-      if (phase /= phase_pull .or. ctl%tearing_criterion /= 'load_maximum') return
-      if (min_ind > 0.0_dp) return
+      if (.not. past_section_maximum(ctl, phase, min_ind)) return
       cap = merge(1.0_dp, branch_early_factor, turned)*ctl%branch_increment
       dt = max(min(dt, cap), ctl%min_increment)
    end subroutine bound_past_section_maximum
