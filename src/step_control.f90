@@ -15,7 +15,7 @@ module step_control
    private
    public :: judge_force_change, next_increment, cutback_factor, extrapolation_error, judge_error, &
              displacement_error, bound_after_failure, failed_cap, failed_cap_growth, bound_past_section_maximum, &
-             branch_early_factor, past_turned_maximum
+             branch_early_factor, lock_branch_factor, past_turned_maximum
 
    !> past a section's maximum load, before the restraining force has turned
    !> toward its maximum (the split at the exit not armed, theory §7.6;
@@ -26,6 +26,15 @@ module step_control
    !> its sections' maxima is not near a tearing point
    !> (bound_past_section_maximum)
    real(dp), parameter :: branch_early_factor = 3.125_dp
+   !> while locking past a section's maximum load the increments are at
+   !> most this many times branch_increment (0.05 h at its default): the
+   !> station distances zbar are updated at each commit (theory §3), so an
+   !> increment's thinning strains the fibres of the next one; after an
+   !> increment of 0.2 h the attempts that followed it (the last of
+   !> locking, then cut-backs) met a residual of 6% of the force scale at
+   !> no motion, and the sheet jumped to another branch (theory §8.3)
+   !> (bound_past_section_maximum)
+   real(dp), parameter :: lock_branch_factor = 6.25_dp
    !> the increment is multiplied by this after a failed or redone increment
    real(dp), parameter :: cutback_factor = 0.25_dp
    !> after a failed attempt of length dt_f the following increments are at
@@ -250,10 +259,11 @@ contains
       if (failed_cap*dt_failed > ctl%max_increment) dt_failed = huge(1.0_dp)
    end subroutine bound_after_failure
 
-   !> PAST_SECTION_MAXIMUM: is the pull past a section's maximum load (the
-   !> smallest indicator (7.2) of the converged state at or below 0: a
-   !> section past its maximum load, under the tool) with the load-maximum
-   !> criterion?  There the path is no longer unique (docs/theory.md §8.3).
+   !> PAST_SECTION_MAXIMUM: is the sheet, locking or pulling, past a
+   !> section's maximum load (the smallest indicator (7.2) of the converged
+   !> state at or below 0: a section past its maximum load, under the tool)
+   !> with the load-maximum criterion?  There the path is no longer unique
+   !> (docs/theory.md §8.3).
    !>  ctl      [in]  controls (tearing criterion)
    !>  phase    [in]  'lock' or 'pull'
    !>  min_ind  [in]  the smallest indicator of the converged state
@@ -261,8 +271,8 @@ contains
       type(controls_type), intent(in) :: ctl
       character(len=*), intent(in) :: phase
       real(dp), intent(in) :: min_ind
-      past_section_maximum = phase == phase_pull .and. ctl%tearing_criterion == 'load_maximum' .and. &
-                             min_ind <= 0.0_dp
+      past_section_maximum = (phase == phase_pull .or. phase == phase_lock) .and. &
+                             ctl%tearing_criterion == 'load_maximum' .and. min_ind <= 0.0_dp
    end function past_section_maximum
 
    !> PAST_TURNED_MAXIMUM: past_section_maximum once the restraining force
@@ -282,15 +292,16 @@ contains
       character(len=*), intent(in) :: phase
       real(dp), intent(in) :: min_ind
       logical, intent(in) :: turned
-      past_turned_maximum = turned .and. past_section_maximum(ctl, phase, min_ind)
+      past_turned_maximum = turned .and. phase == phase_pull .and. past_section_maximum(ctl, phase, min_ind)
    end function past_turned_maximum
 
    !> BOUND_PAST_SECTION_MAXIMUM: past a section's maximum load
-   !> (past_section_maximum) the increment is at most branch_increment
-   !> once the restraining force has turned toward its maximum, and
-   !> branch_early_factor times it before (docs/theory.md §8.3): the path
-   !> is no longer unique there, and long increments land on another branch
-   !> than short ones.  The caller applies it with tools only.
+   !> (past_section_maximum) the pull's increment is at most
+   !> branch_increment once the restraining force has turned toward its
+   !> maximum, and branch_early_factor times it before; the lock's
+   !> lock_branch_factor times it (docs/theory.md §8.3): the path is no
+   !> longer unique there, and long increments land on another branch than
+   !> short ones.  The caller applies it with tools only.
    !>  ctl      [in]    controls (tearing criterion, branch_increment,
    !>                   min_increment)
    !>  phase    [in]    'lock' or 'pull'
@@ -306,7 +317,11 @@ contains
       real(dp), intent(inout) :: dt
       real(dp) :: cap
       if (.not. past_section_maximum(ctl, phase, min_ind)) return
-      cap = merge(1.0_dp, branch_early_factor, turned)*ctl%branch_increment
+      if (phase == phase_lock) then
+         cap = lock_branch_factor*ctl%branch_increment
+      else
+         cap = merge(1.0_dp, branch_early_factor, turned)*ctl%branch_increment
+      end if
       dt = max(min(dt, cap), ctl%min_increment)
    end subroutine bound_past_section_maximum
 
