@@ -22,7 +22,7 @@ module tearing
              load_at_maximum, parabola_vertex
    public :: tear_force_drop, lock_force_drop, neck_strain_rate, tear_confirm_pull, neck_stretch_fraction, station_lengths, &
              set_torn, element_length_at
-   public :: maximum_approaching, approach_slope_ratio
+   public :: maximum_approaching, approach_slope_ratio, fall_duration
 
    !> A maximum of the restraining force is a neck once the force has fallen
    !> tear_force_drop (relative) below it and either the fastest-stretching
@@ -174,7 +174,8 @@ contains
    !> positive definiteness somewhere (the paper's criterion met), is the
    !> snap-back of a forming neck: no equilibrium is near under the
    !> prescribed load (docs/theory.md §7.4); while locking, only once the
-   !> tension has fallen lock_force_drop below its maximum; while pulling,
+   !> tension has fallen lock_force_drop below its maximum and stayed there
+   !> over tear_confirm_pull of lift (fall_duration); while pulling,
    !> only once the sheet has taken neck_stretch_fraction of the pull since
    !> the maximum as stretch (7.6), as in the confirmation.  The tearing
    !> point is then the maximum, at the station whose strain grew most
@@ -202,8 +203,14 @@ contains
       if (rec%max_at == 0 .or. rec%max_at >= size(loads)) return
       ! while locking the paper's criterion is met early on the radii (the
       ! section supported by the tool): a failed increment is a snap-back
-      ! only once the tension has fallen clearly below its maximum
-      if (phase == phase_lock .and. forces(size(forces)) > (1.0_dp - lock_force_drop)*forces(rec%max_at)) return
+      ! only once the tension has fallen clearly below its maximum, and
+      ! stayed there over tear_confirm_pull of lift, as for the
+      ! confirmation: a neck forming as the bead closes takes its tension
+      ! down over tenths of h, while a jump of the path (theory §8.3)
+      ! drops it in one increment of any length
+      if (phase == phase_lock) then
+         if (fall_duration(loads, forces, rec%max_at, lock_force_drop) < tear_confirm_pull*m%thickness) return
+      end if
       growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
       ! in the pull, a sheet still drawing in is not necking (7.6)
       if (phase == phase_pull) then
@@ -300,7 +307,7 @@ contains
       real(dp), intent(out), optional :: drawn_share
       real(dp), allocatable :: growth(:)
       real(dp) :: stretched, drop
-      integer :: n, j
+      integer :: n
       n = size(force)
       k = 0
       tear_load = 0.0_dp
@@ -316,15 +323,9 @@ contains
          strain_at_max = strain
          return
       end if
-      ! the drop must have lasted tear_confirm_pull: j is the first sample
-      ! of the run of samples that are all below the threshold
+      ! the drop must have lasted tear_confirm_pull
       drop = merge(tear_force_drop, lock_force_drop, pulled)
-      j = n
-      do while (j > max_at + 1)
-         if (force(j - 1) > (1.0_dp - drop)*force(max_at)) exit
-         j = j - 1
-      end do
-      if (delta(n) - delta(j) < tear_confirm_pull*h) return
+      if (fall_duration(delta, force, max_at, drop) < tear_confirm_pull*h) return
       growth = strain - strain_at_max
       ! the share of the pull since the maximum taken up as stretch
       stretched = 1.0_dp
@@ -336,6 +337,30 @@ contains
          tear_load = load_at_maximum(delta, force, max_at, h)
       end if
    end subroutine track_load_maximum
+
+   !> FALL_DURATION: how long the force has stayed drop (relative) below
+   !> its maximum: the load from the first sample of the last run of
+   !> samples that are all below that threshold to the last sample (0 when
+   !> the last is not below it).
+   !>  delta, force [in] the history (the current state last)
+   !>  max_at       [in] index of the maximum, within the history
+   !>  drop         [in] the relative fall
+   pure function fall_duration(delta, force, max_at, drop) result(duration)
+      real(dp), intent(in) :: delta(:), force(:), drop
+      integer, intent(in) :: max_at
+      real(dp) :: duration
+      integer :: n, j
+      n = size(force)
+      duration = 0.0_dp
+      if (max_at < 1 .or. max_at >= n) return
+      if (force(n) > (1.0_dp - drop)*force(max_at)) return
+      j = n
+      do while (j > max_at + 1)
+         if (force(j - 1) > (1.0_dp - drop)*force(max_at)) exit
+         j = j - 1
+      end do
+      duration = delta(n) - delta(j)
+   end function fall_duration
 
    !> NECK_CONFIRMED: is the state past a maximum of the restraining force a
    !> neck?  The force has fallen by drop of the maximum (tear_force_drop

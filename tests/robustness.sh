@@ -24,7 +24,9 @@
 #    a file name) is refused; a tab in the title reads as a blank, and so
 #    does a line end inside quotes (issue 28, item 8);
 #  - groups ended by the old dialect's '&end' read as with '/';
-#  - lock.dat's iteration column counts failed attempts too.
+#  - lock.dat's iteration column counts failed attempts too;
+#  - a lock that cannot be finished ends the run (no_convergence), with no
+#    pull from the bead not closed and no tearing point from a jump.
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -265,6 +267,28 @@ if [[ -n $total && $rows == "$total" && ${cuts:-0} -gt 0 ]]; then
     ok "lock.dat's newton_iterations sum to summary.txt's ($total, with $cuts cutbacks)"
 else
     bad "lock.dat's newton_iterations sum to $rows, summary.txt has '$total' (cutbacks '$cuts')"
+fi
+
+# a lock that cannot be finished is no state to pull from (theory §8.3):
+# the SPCC r0/r90 regression deck with branch_increment = 0.032h (locking
+# increments of 0.2h past its sections' maxima) jumps branch at 6.13h of the
+# 6.22h, every later attempt fails below min_increment and the tension's
+# fall lasted 1e-6h, no neck: status no_convergence, exit 2, no pull rows
+# (before: a tearing point while locking at 6.03h, or, without it, the
+# pull run from the bead not closed)
+sed 's|^&loading$|\&loading\n   branch_increment = 0.024384|' \
+    tests/regression/decks/lock_spcc_transverse_beadA.nml >"$work/short_lock.nml"
+"$bin" "$work/short_lock.nml" -o "$work/short_lock" >"$work/short_lock.log" 2>&1
+short_status=$?
+pull_rows=$(awk '!/^#/' "$work/short_lock/pull.dat" 2>/dev/null | wc -l)
+if ! grep -q 'branch_increment = 0.024384' "$work/short_lock.nml"; then
+    bad "a lock stopped short: the deck copy was not made"
+elif ((short_status == 2)) && grep -q '^status = no_convergence$' "$work/short_lock/summary.txt" &&
+    grep -q '^tearing_lock_over_h = none$' "$work/short_lock/summary.txt" && ((pull_rows == 0)) &&
+    grep -q 'no convergence in lock' "$work/short_lock.log"; then
+    ok "a lock stopped short by a jump of the path: no_convergence, exit 2, no pull"
+else
+    bad "a lock stopped short: exit $short_status, $pull_rows pull rows, $(grep -E '^(status|tearing_lock_over_h) ' "$work/short_lock/summary.txt" | tr '\n' ' ')"
 fi
 
 echo "robustness: $failures failed"
