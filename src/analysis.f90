@@ -189,8 +189,8 @@ contains
    !> phase with no_convergence -- unless, with stop_at_localization, the
    !> sheet has passed a maximum of the watched force and the paper's
    !> criterion: past tearing it may have no nearby equilibrium, and the
-   !> maximum is the tearing point (the snap-back of a forming neck, §7.4);
-   !> or, pulling, the paper's criterion has been met (the run ends there).
+   !> maximum is the tearing point (the snap-back of a forming neck, §7.4),
+   !> or the paper's criterion has been met (the run ends there): pulling.
    !> A lock that stops short without a tearing point is no_convergence:
    !> the pull would start from a bead not closed.
    !>  pr       [in,out] the loop's state: dt, dt_failed
@@ -229,8 +229,9 @@ contains
          if (ctl%stop_at_localization) then
             if (watches_maximum(m, ctl, pr%phase)) call tear_at_snap_back(m, s, pr%phase, rec, snapped)
             ! a lock stopped short is no state to pull from: only a tearing
-            ! point ends it (the pull is then not run); a pull past the
-            ! paper's criterion ends where it is
+            ! point (confirmed on the last converged state) ends it, and
+            ! the pull is then not run; a pull past the paper's criterion
+            ! ends where it is
             if (pr%phase == phase_lock) then
                if (rec%torn) return
             else if (rec%localized) then

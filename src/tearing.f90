@@ -169,17 +169,19 @@ contains
       if (k > 0) call set_torn(m, rec, phase, load, k)
    end subroutine check_load_maximum
 
-   !> TEAR_AT_SNAP_BACK: an increment that cannot converge past a maximum
-   !> of the phase's force (check_load_maximum), once the section has lost
-   !> positive definiteness somewhere (the paper's criterion met), is the
-   !> snap-back of a forming neck: no equilibrium is near under the
-   !> prescribed load (docs/theory.md §7.4); while locking, only once the
-   !> tension has fallen lock_force_drop below its maximum and stayed there
-   !> over tear_confirm_pull of lift (fall_duration); while pulling,
-   !> only once the sheet has taken neck_stretch_fraction of the pull since
-   !> the maximum as stretch (7.6), as in the confirmation.  The tearing
-   !> point is then the maximum, at the station whose strain grew most
-   !> since it.
+   !> TEAR_AT_SNAP_BACK: an increment of the pull that cannot converge past
+   !> a maximum of the restraining force (check_load_maximum), once the
+   !> section has lost positive definiteness somewhere (the paper's
+   !> criterion met), is the snap-back of a forming neck: no equilibrium is
+   !> near under the prescribed pull (docs/theory.md §7.4), once the sheet
+   !> has taken neck_stretch_fraction of the pull since the maximum as
+   !> stretch (7.6), as in the confirmation.  The tearing point is then the
+   !> maximum, at the station whose strain grew most since it.  Not while
+   !> locking: there the confirmation asks the same as a snap-back could
+   !> (the tension lock_force_drop below its maximum over tear_confirm_pull
+   !> of lift, with the section lost), so a neck that forms as the bead
+   !> closes is confirmed on the last converged state before any attempt
+   !> fails, and a fall that has not lasted is a jump of the path (§8.3).
    !>  m, s   [in]     model and the last converged state
    !>  phase  [in]     'lock' or 'pull'
    !>  rec    [in,out] as check_load_maximum
@@ -192,31 +194,14 @@ contains
       logical, intent(out) :: torn
       real(dp), allocatable :: growth(:), loads(:), forces(:)
       torn = .false.
-      if (rec%torn .or. .not. rec%localized) return
-      if (phase == phase_lock) then
-         loads = rec%lock_lift(1:rec%n_lock)
-         forces = rec%lock_tension(1:rec%n_lock)
-      else
-         loads = rec%pull_delta(rec%split%pull_first:rec%n_pull)
-         forces = rec%pull_force(rec%split%pull_first:rec%n_pull)
-      end if
+      if (phase /= phase_pull .or. rec%torn .or. .not. rec%localized) return
+      loads = rec%pull_delta(rec%split%pull_first:rec%n_pull)
+      forces = rec%pull_force(rec%split%pull_first:rec%n_pull)
       if (rec%max_at == 0 .or. rec%max_at >= size(loads)) return
-      ! while locking the paper's criterion is met early on the radii (the
-      ! section supported by the tool): a failed increment is a snap-back
-      ! only once the tension has fallen clearly below its maximum, and
-      ! stayed there over tear_confirm_pull of lift, as for the
-      ! confirmation: a neck forming as the bead closes takes its tension
-      ! down over tenths of h, while a jump of the path (theory §8.3)
-      ! drops it in one increment of any length
-      if (phase == phase_lock) then
-         if (fall_duration(loads, forces, rec%max_at, lock_force_drop) < tear_confirm_pull*m%thickness) return
-      end if
       growth = pack(log(1.0_dp + s%gpn(igp_strain, :, :)), .true.) - rec%strain_at_max
-      ! in the pull, a sheet still drawing in is not necking (7.6)
-      if (phase == phase_pull) then
-         if (stretched_share(growth, station_lengths(m), loads(size(loads)) - loads(rec%max_at)) &
-             < neck_stretch_fraction) return
-      end if
+      ! a sheet still drawing in is not necking (7.6)
+      if (stretched_share(growth, station_lengths(m), loads(size(loads)) - loads(rec%max_at)) &
+          < neck_stretch_fraction) return
       call set_torn(m, rec, phase, load_at_maximum(loads, forces, rec%max_at, m%thickness), &
                     first_near_max(growth))
       torn = .true.
