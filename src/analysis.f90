@@ -186,13 +186,13 @@ contains
    !> FAILED_ATTEMPT: Newton failed (§8.2, §8.3): the increment is cut back
    !> by cutback_factor and its length bounds the next ones; a failure of
    !> the linear solve itself, or an increment below min_increment, ends the
-   !> phase with no_convergence -- unless, with stop_at_localization, the
-   !> sheet has passed a maximum of the watched force and the paper's
-   !> criterion: past tearing it may have no nearby equilibrium, and the
-   !> maximum is the tearing point (the snap-back of a forming neck, §7.4),
-   !> or the paper's criterion has been met (the run ends there): pulling.
-   !> A lock that stops short without a tearing point is no_convergence:
-   !> the pull would start from a bead not closed.
+   !> phase with no_convergence -- unless, pulling with stop_at_localization,
+   !> the paper's criterion has been met: past tearing the sheet may have no
+   !> nearby equilibrium, and the run ends there (past a maximum of the
+   !> restraining force the maximum is then the tearing point, the
+   !> snap-back of a forming neck, §7.4).  A lock that stops short ends
+   !> with no_convergence unless its tearing point has been found: the
+   !> pull would start from a bead not closed.
    !>  pr       [in,out] the loop's state: dt, dt_failed
    !>  m        [in]     model
    !>  ctl      [in]     controls
