@@ -227,14 +227,15 @@ contains
          write (rec%message, '(3a,es10.3,a)') 'no convergence in ', pr%phase, &
             ' at load/h = ', pr%p/pr%h, ': increment below min_increment'
          if (ctl%stop_at_localization) then
-            if (watches_maximum(m, ctl, pr%phase)) call tear_at_snap_back(m, s, pr%phase, rec, snapped)
-            ! a lock stopped short is no state to pull from: only a tearing
-            ! point (confirmed on the last converged state) ends it, and
-            ! the pull is then not run; a pull past the paper's criterion
-            ! ends where it is
-            if (pr%phase == phase_lock) then
-               if (rec%torn) return
-            else if (rec%localized) then
+            ! a pull past the paper's criterion ends where it is (at the
+            ! snap-back's tearing point past the force's maximum); a lock
+            ! stopped short is no state to pull from: only a tearing point
+            ! (confirmed on the last converged state) ends it, and the pull
+            ! is then not run
+            if (pr%phase == phase_pull) then
+               if (watches_maximum(m, ctl, pr%phase)) call tear_at_snap_back(m, s, pr%phase, rec, snapped)
+               if (rec%localized) return
+            else if (rec%torn) then
                return
             end if
          end if

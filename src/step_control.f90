@@ -265,14 +265,11 @@ contains
    !> with the load-maximum criterion?  There the path is no longer unique
    !> (docs/theory.md §8.3).
    !>  ctl      [in]  controls (tearing criterion)
-   !>  phase    [in]  'lock' or 'pull'
    !>  min_ind  [in]  the smallest indicator of the converged state
-   pure logical function past_section_maximum(ctl, phase, min_ind)
+   pure logical function past_section_maximum(ctl, min_ind)
       type(controls_type), intent(in) :: ctl
-      character(len=*), intent(in) :: phase
       real(dp), intent(in) :: min_ind
-      past_section_maximum = (phase == phase_pull .or. phase == phase_lock) .and. &
-                             ctl%tearing_criterion == 'load_maximum' .and. min_ind <= 0.0_dp
+      past_section_maximum = ctl%tearing_criterion == 'load_maximum' .and. min_ind <= 0.0_dp
    end function past_section_maximum
 
    !> PAST_TURNED_MAXIMUM: past_section_maximum once the restraining force
@@ -292,7 +289,7 @@ contains
       character(len=*), intent(in) :: phase
       real(dp), intent(in) :: min_ind
       logical, intent(in) :: turned
-      past_turned_maximum = turned .and. phase == phase_pull .and. past_section_maximum(ctl, phase, min_ind)
+      past_turned_maximum = turned .and. phase == phase_pull .and. past_section_maximum(ctl, min_ind)
    end function past_turned_maximum
 
    !> BOUND_PAST_SECTION_MAXIMUM: past a section's maximum load
@@ -316,7 +313,7 @@ contains
       logical, intent(in) :: turned
       real(dp), intent(inout) :: dt
       real(dp) :: cap
-      if (.not. past_section_maximum(ctl, phase, min_ind)) return
+      if (.not. past_section_maximum(ctl, min_ind)) return
       if (phase == phase_lock) then
          cap = lock_branch_factor*ctl%branch_increment
       else
