@@ -18,6 +18,7 @@ module analysis
    use kinds, only: dp, output_unit
    use phases, only: phase_lock, phase_pull
    use errors, only: warn
+   use text, only: num
    use hermite, only: n_gauss
    use band, only: band_error_message
    use mesh, only: node_dof, dof_v, dof_w, dof_w_slope
@@ -25,7 +26,7 @@ module analysis
    use contact, only: ich_penetration
    use controls, only: controls_type
    use record, only: run_record, run_ok, run_no_convergence, run_interrupted, run_write_failed, &
-                     run_out_of_memory, split_note
+                     run_out_of_memory, split_note, split_record
    use remesh, only: last_radius_exit, exit_pieces, split_elements, split_field, split_stations, &
                      exit_zone_before, reequilibrate, reequilibration, reeq_material, reeq_no_equilibrium, &
                      reeq_out_of_memory
@@ -477,9 +478,20 @@ contains
    !>  ctl  [in]     controls (Newton's limits)
    !>  s    [in,out] the converged state; on return the mapped state in
    !>                equilibrium
+   !> A mapped state that finds no equilibrium (Newton cycling between
+   !> points that load and unload, e.g. past a fold) is undone: the mesh,
+   !> the state and the loop's state before the split are restored, no
+   !> further split is made, and the run goes on on that mesh, its tearing
+   !> point then on elements too long for the neck (flagged as such); the
+   !> log warns and summary.txt gives the pull at which it happened.
+   !>  pr   [in,out] the loop's state
+   !>  m    [in,out] the model; on return the split mesh (or, the split
+   !>                undone, the mesh before it with m%exit_element = 0)
+   !>  ctl  [in]     controls (Newton's limits)
+   !>  s    [in,out] the converged state; on return the mapped state in
+   !>                equilibrium (or the state before the split)
    !>  rec  [in,out] the split's record and counts; status and message
-   !>                when out of memory or the mapped state finds no
-   !>                equilibrium
+   !>                when out of memory
    subroutine split_at_exit(pr, m, ctl, s, rec)
       type(phase_run), intent(inout) :: pr
       type(model_type), intent(inout) :: m
@@ -491,7 +503,12 @@ contains
       real(dp) :: x_exit, energy_before(n_energy), h
       logical :: found
       integer :: first, last
-      character(len=:), allocatable :: alloc_msg
+      character(len=:), allocatable :: alloc_msg, failure
+      ! what the split changes, kept to undo it
+      type(model_type) :: m_before
+      type(state_type) :: s_before
+      type(phase_run) :: pr_before
+      type(split_record) :: split_before
       h = pr%h
       call last_radius_exit(m, s, x_exit, found)
       if (.not. found) then
@@ -511,6 +528,10 @@ contains
       call energy_totals(m, s, energy_before)
       x_old = m%x
       motion = s%u - pr%u_prev
+      m_before = m
+      s_before = s
+      pr_before = pr
+      split_before = rec%split
       call split_elements(m, s, pieces, alloc_msg)
       if (len(alloc_msg) > 0) then
          ! (the mesh and the state are those before the split)
@@ -528,8 +549,23 @@ contains
          return
       end if
       call phase_load(m, phase_pull, pr%p, pr%ld)
-      call equilibrate_split(pr, m, ctl, s, rec, energy_before)
+      call equilibrate_split(pr, m, ctl, s, rec, energy_before, failure)
       if (rec%status /= run_ok) return
+      if (len(failure) > 0) then
+         ! undone: the mesh before the split, unrefined from here on (the
+         ! failed solves' iterations and assemblies stay counted)
+         m = m_before
+         s = s_before
+         pr = pr_before
+         rec%split = split_before
+         rec%split%abandoned = .true.
+         rec%split%abandoned_load = pr%p
+         m%exit_element = 0.0_dp
+         call warn('at pull/h = '//num(pr%p/h)//' '//failure//': the split is undone and the run '// &
+                   'goes on on the mesh before it, not refined at the neck; its tearing point depends '// &
+                   'on the mesh (docs/theory.md §7.6)', 'split_at_exit')
+         return
+      end if
       pr%u_prev = s%u - split_field(x_old, pieces, motion)
       pr%nl_old = pack(split_stations(pieces, reshape(pr%nl_old, [1, n_gauss, size(pieces)])), .true.)
       call records_after_split(rec, pieces)
@@ -553,15 +589,19 @@ contains
    !>  rec            [in,out] counts, work, split's energy and force change;
    !>                          status and message when it fails
    !>  energy_before  [in]     energy_totals before the split
-   subroutine equilibrate_split(pr, m, ctl, s, rec, energy_before)
+   !>  failure        [out]    '' when in equilibrium; else why not (the
+   !>                          caller undoes the split)
+   subroutine equilibrate_split(pr, m, ctl, s, rec, energy_before, failure)
       type(phase_run), intent(inout) :: pr
       type(model_type), intent(in) :: m
       type(controls_type), intent(in) :: ctl
       type(state_type), intent(inout) :: s
       type(run_record), intent(inout) :: rec
       real(dp), intent(in) :: energy_before(n_energy)
+      character(len=:), allocatable, intent(out) :: failure
       type(reequilibration) :: eq
       real(dp) :: energy_after(n_energy), force_change
+      failure = ''
       call reequilibrate(m, s, pr%ld, pr%kb, pr%r, ctl%max_iterations, ctl%tolerance, eq)
       rec%newton_iterations = rec%newton_iterations + eq%iterations
       rec%assemblies = rec%assemblies + eq%assemblies
@@ -571,14 +611,11 @@ contains
          rec%message = 'in pull, after the split: '//eq%errmsg
          return
       case (reeq_material)
-         rec%status = run_no_convergence
-         rec%message = 'in pull: a material point of the state mapped onto the split mesh cannot be updated:'// &
-                       ' set &sheet refine_exit = .false.'
+         failure = 'a material point of the state mapped onto the split mesh cannot be updated'
          return
       case (reeq_no_equilibrium)
-         rec%status = run_no_convergence
-         write (rec%message, '(a,f0.4,a)') 'in pull: no equilibrium of the state mapped onto the '// &
-            'split mesh (', eq%removed, ' of its imbalance removed): set &sheet refine_exit = .false.'
+         failure = 'the state mapped onto the split mesh finds no equilibrium ('//num(eq%removed)// &
+                   ' of its imbalance removed)'
          return
       end select
       rec%work = rec%work + eq%work_dead

@@ -51,6 +51,10 @@ module record
       ! (N mm/mm) over the splits beyond the dead loads' work: the mapping's
       ! share, kept out of the energy balance
       real(dp) :: energy_change = 0.0_dp
+      ! a split whose mapped state found no equilibrium, undone: the run
+      ! went on, unrefined, on the mesh before it (docs/theory.md §7.6)
+      logical :: abandoned = .false.
+      real(dp) :: abandoned_load = 0.0_dp
    end type split_record
 
    !> What the run has found so far (written to summary.txt).

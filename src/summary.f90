@@ -245,6 +245,7 @@ contains
       else
          call add(text, 'split_elements_before = none')
       end if
+      call put(text, 'split_abandoned_over_h', rec%split%abandoned_load/h, rec%split%abandoned)
       call add(text, 'increments = '//itoa(rec%increments))
       call add(text, 'newton_iterations = '//itoa(rec%newton_iterations))
       call add(text, 'cutbacks = '//itoa(rec%cutbacks))

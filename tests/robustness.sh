@@ -26,7 +26,9 @@
 #  - groups ended by the old dialect's '&end' read as with '/';
 #  - lock.dat's iteration column counts failed attempts too;
 #  - a lock that cannot be finished ends the run (no_convergence), with no
-#    pull from the bead not closed and no tearing point from a jump.
+#    pull from the bead not closed and no tearing point from a jump;
+#  - a split at the exit whose mapped state finds no equilibrium is undone
+#    and the run goes on on the mesh before it.
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -289,6 +291,25 @@ elif ((short_status == 2)) && grep -q '^status = no_convergence$' "$work/short_l
     ok "a lock stopped short by a jump of the path: no_convergence, exit 2, no pull"
 else
     bad "a lock stopped short: exit $short_status, $pull_rows pull rows, $(grep -E '^(status|tearing_lock_over_h) ' "$work/short_lock/summary.txt" | tr '\n' ' ')"
+fi
+
+# a split whose mapped state finds no equilibrium is undone (theory §7.6):
+# tests/decks/split_undone_stepped_dp600.nml folds while locking and its
+# split at 0.488h of pull takes no step toward equilibrium; the run goes on
+# on the mesh before it and tears, its tearing point flagged as depending
+# on the mesh (before: no_convergence, exit 2, no tearing point)
+"$bin" tests/decks/split_undone_stepped_dp600.nml -o "$work/split_undone" >"$work/split_undone.log" 2>&1
+undone_status=$?
+undone_at=$(sed -n 's/^split_abandoned_over_h = //p' "$work/split_undone/summary.txt" 2>/dev/null)
+if ((undone_status == 0)) && grep -q '^status = torn$' "$work/split_undone/summary.txt" &&
+    grep -q '^tearing_mesh_dependent = yes$' "$work/split_undone/summary.txt" &&
+    grep -q '^split_count = 0$' "$work/split_undone/summary.txt" &&
+    grep -q '^elements = 80$' "$work/split_undone/summary.txt" &&
+    awk -v a="$undone_at" 'BEGIN { exit !(a + 0 > 0.3 && a + 0 < 0.7) }' &&
+    grep -q 'WARNING\* split_at_exit: at pull/h = .* the split is undone' "$work/split_undone.log"; then
+    ok "a split that finds no equilibrium is undone: the run tears on the mesh before it (split at ${undone_at}h undone)"
+else
+    bad "a split that finds no equilibrium: exit $undone_status, $(grep -E '^(status|tearing_mesh_dependent|split_count|split_abandoned_over_h|elements) ' "$work/split_undone/summary.txt" 2>/dev/null | tr '\n' ' ')"
 fi
 
 echo "robustness: $failures failed"
