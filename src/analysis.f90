@@ -18,7 +18,7 @@ module analysis
    use kinds, only: dp, output_unit
    use phases, only: phase_lock, phase_pull
    use errors, only: warn
-   use text, only: num
+   use text, only: num, itoa
    use hermite, only: n_gauss
    use band, only: band_error_message
    use mesh, only: node_dof, dof_v, dof_w, dof_w_slope
@@ -30,7 +30,7 @@ module analysis
    use remesh, only: last_radius_exit, exit_pieces, split_elements, split_field, split_stations, &
                      exit_zone_before, reequilibrate, reequilibration, reeq_material, reeq_no_equilibrium, &
                      reeq_out_of_memory
-   use solver, only: newton_solve, commit_state, newton_ok, newton_solve_failed
+   use solver, only: newton_solve, commit_state, newton_ok, newton_solve_failed, newton_result
    use step_control, only: judge_force_change, cutback_factor, extrapolation_error, judge_error, &
                            displacement_error
    use tearing, only: check_localization, check_fold, check_load_maximum, tear_at_snap_back, &
@@ -227,6 +227,10 @@ contains
       if (pr%dt < ctl%min_increment) then
          write (rec%message, '(3a,es10.3,a)') 'no convergence in ', pr%phase, &
             ' at load/h = ', pr%p/pr%h, ': increment below min_increment'
+         if (contact_chatter(m, pr%nr)) rec%message = trim(rec%message)//'; the stations in contact kept '// &
+            'changing ('//itoa(pr%nr%contact_changes)//' of the last attempt''s '//itoa(pr%nr%iterations)// &
+            ' iterations): a sheet grazing a tool over a long span with the sharp contact onset; '// &
+            '&tools contact_smoothing = 0.001 (h) lets it converge (docs/theory.md §5)'
          if (ctl%stop_at_localization) then
             ! a pull past the paper's criterion ends where it is (at the
             ! snap-back's tearing point past the force's maximum); a lock
@@ -245,6 +249,21 @@ contains
       end if
       outcome = attempt_retry
    end subroutine failed_attempt
+
+   !> CONTACT_CHATTER: did a failed Newton solve chatter between contact
+   !> sets (docs/theory.md §5)?  With the sharp onset (contact_smoothing =
+   !> 0) a sheet lying on a tool face at zero gap over many stations can
+   !> have its stations switch in and out of contact from one iterate to
+   !> the next without end; most iterations of such a solve change the
+   !> number of stations in contact.
+   !>  m   [in]  model
+   !>  nr  [in]  the failed solve
+   pure logical function contact_chatter(m, nr)
+      type(model_type), intent(in) :: m
+      type(newton_result), intent(in) :: nr
+      contact_chatter = m%has_tools .and. .not. m%contact_smoothing > 0.0_dp .and. &
+                        nr%iterations >= 6 .and. 2*nr%contact_changes >= nr%iterations
+   end function contact_chatter
 
    !> JUDGE_ATTEMPT: a converged attempt is redone shorter when its force
    !> jumped (step_control's judge_force_change) or its local error is too

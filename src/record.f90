@@ -88,7 +88,7 @@ module record
       integer :: increments = 0, newton_iterations = 0, cutbacks = 0
       integer :: assemblies = 0   ! calls of the global assembly (solver's assemble)
       integer :: status = run_ok
-      character(len=200) :: message = ''
+      character(len=512) :: message = ''
       real(dp), allocatable :: pull_delta(:), pull_force(:)
       integer :: n_pull = 0
       ! the locking history of a clamped sheet: lift H and the sheet's

@@ -50,6 +50,10 @@ module solver
       ! change is a kink of the residual that Newton crosses; 0 otherwise)
       integer :: plastic(0:max_newton_history) = 0
       integer :: switched(0:max_newton_history) = 0
+      ! iterations whose correction changed the number of stations in
+      ! contact (a solve that fails with most of its iterations so is
+      ! chattering between contact sets: analysis's failed_attempt says so)
+      integer :: contact_changes = 0
    end type newton_result
 
 contains
@@ -437,6 +441,7 @@ contains
             res%assemblies = res%assemblies + 1
             g1 = dot_product(du, merge(0.0_dp, r, ld%fixed))
          end do
+         if (it > 0 .and. s%n_contact /= n_contact_prev) res%contact_changes = res%contact_changes + 1
          rnorm = scaled_norm(m, ld, r, f_scale)
          if (pnewdt < 1.0_dp) then
             res%pnewdt = pnewdt

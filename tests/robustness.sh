@@ -28,7 +28,9 @@
 #  - a lock that cannot be finished ends the run (no_convergence), with no
 #    pull from the bead not closed and no tearing point from a jump;
 #  - a split at the exit whose mapped state finds no equilibrium is undone
-#    and the run goes on on the mesh before it.
+#    and the run goes on on the mesh before it;
+#  - a first increment chattering between contact sets (a sheet grazing a
+#    tool over a long span, sharp onset) is named, with its remedy.
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -310,6 +312,25 @@ if ((undone_status == 0)) && grep -q '^status = torn$' "$work/split_undone/summa
     ok "a split that finds no equilibrium is undone: the run tears on the mesh before it (split at ${undone_at}h undone)"
 else
     bad "a split that finds no equilibrium: exit $undone_status, $(grep -E '^(status|tearing_mesh_dependent|split_count|split_abandoned_over_h|elements) ' "$work/split_undone/summary.txt" 2>/dev/null | tr '\n' ' ')"
+fi
+
+# a sheet grazing a tool over a long span with the sharp contact onset
+# (theory §5): the first increment chatters between contact sets and fails;
+# the message names that and the remedy, and with contact_smoothing =
+# 0.001 (h) the same deck locks (before: the bare "increment below
+# min_increment")
+"$bin" tests/decks/grazing_long_sheet.nml -o "$work/grazing" >"$work/grazing.log" 2>&1
+grazing_status=$?
+sed 's|^&tools$|\&tools\n   contact_smoothing = 0.001|' tests/decks/grazing_long_sheet.nml >"$work/grazing_smooth.nml"
+"$bin" "$work/grazing_smooth.nml" -o "$work/grazing_smooth" >"$work/grazing_smooth.log" 2>&1
+smooth_status=$?
+if ((grazing_status == 2)) && grep -q '^status = no_convergence$' "$work/grazing/summary.txt" &&
+    grep -q 'the stations in contact kept changing .*contact_smoothing = 0.001' "$work/grazing.log" &&
+    grep -q 'contact_smoothing = 0.001' "$work/grazing_smooth.nml" &&
+    ((smooth_status == 0)) && grep -q '^status = completed$' "$work/grazing_smooth/summary.txt"; then
+    ok "contact chatter on a grazing sheet: named with its remedy (exit 2), and the remedy locks it (exit 0)"
+else
+    bad "contact chatter on a grazing sheet: exit $grazing_status ($(grep -c 'kept changing' "$work/grazing.log") hints), with contact_smoothing exit $smooth_status"
 fi
 
 echo "robustness: $failures failed"
