@@ -386,7 +386,11 @@ def gen_tearing_default(ctx):
 # double bead, stopped at tearing, with &sheet strain_gradient scaled
 GRADIENT_DECKS = ["input/cc_fig5a_beadA_steel.nml", "input/cc_fig6_beadB_steel.nml",
                   "input/cc_beadA_steel_mu0.nml", "input/cc_beadA_aluminium.nml",
-                  "input/cc_beadB_aluminium.nml", "input/cc_beadB_hss.nml", "input/cc_double_bead.nml"]
+                  "input/cc_beadB_aluminium.nml", "input/cc_beadB_hss.nml", "input/cc_double_bead.nml",
+                  # beyond the validation table: beads with tighter radii (their
+                  # continuum checks kept in docs/validation/continuum/<name>/)
+                  "docs/validation/continuum/decks/tight_beadA_steel.nml",
+                  "docs/validation/continuum/decks/tight_round_aluminium.nml"]
 GRADIENT_VALUES = [0.25, 0.5, 1.0, 2.0]
 
 
