@@ -400,15 +400,18 @@ contains
    !>  found   [out] .false. when no station touches an arc
    !>  x_entry [out] optional: the smallest such x, the entry of the first
    !>                radius (exit_state)
-   pure subroutine last_radius_exit(m, s, x_exit, found, x_entry)
+   !>  radius  [out] optional: the (centreline) radius of the arc touched
+   !>                at x_exit, mm (unset when found is .false.)
+   pure subroutine last_radius_exit(m, s, x_exit, found, x_entry, radius)
       type(model_type), intent(in) :: m
       type(state_type), intent(in) :: s
       real(dp), intent(out) :: x_exit
       logical, intent(out) :: found
-      real(dp), intent(out), optional :: x_entry
+      real(dp), intent(out), optional :: x_entry, radius
       integer :: e, ig, it, seg
       x_exit = -huge(1.0_dp)
       if (present(x_entry)) x_entry = huge(1.0_dp)
+      if (present(radius)) radius = 0.0_dp
       found = .false.
       if (.not. m%has_tools) return
       do e = 1, m%n_el
@@ -419,6 +422,8 @@ contains
                if (seg < 1 .or. seg > size(m%tool(it)%seg)) cycle
                if (m%tool(it)%seg(seg)%kind /= seg_arc) cycle
                found = .true.
+               if (s%cn(ich_position, ig, e, it) > x_exit .and. present(radius)) &
+                  radius = m%tool(it)%seg(seg)%radius
                x_exit = max(x_exit, s%cn(ich_position, ig, e, it))
                if (present(x_entry)) x_entry = min(x_entry, s%cn(ich_position, ig, e, it))
             end do

@@ -30,7 +30,9 @@
 #  - a split at the exit whose mapped state finds no equilibrium is undone
 #    and the run goes on on the mesh before it;
 #  - a first increment chattering between contact sets (a sheet grazing a
-#    tool over a long span, sharp onset) is named, with its remedy.
+#    tool over a long span, sharp onset) is named, with its remedy;
+#  - a tearing point on a tool radius tighter than the validated beads'
+#    warns.
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -331,6 +333,22 @@ if ((grazing_status == 2)) && grep -q '^status = no_convergence$' "$work/grazing
     ok "contact chatter on a grazing sheet: named with its remedy (exit 2), and the remedy locks it (exit 0)"
 else
     bad "contact chatter on a grazing sheet: exit $grazing_status ($(grep -c 'kept changing' "$work/grazing.log") hints), with contact_smoothing exit $smooth_status"
+fi
+
+# warnings that hold (theory §12.7): a tearing point where the sheet leaves
+# a tool radius below the validated beads' 4.66h warns (a rectangular bead
+# with r2 = 2.5 mm: 3.28h, 23% late against its kept continuum); bead A's
+# does not
+"$bin" docs/validation/continuum/decks/tight_beadA_steel.nml -o "$work/tight" >"$work/tight.log" 2>&1
+tight_status=$?
+"$bin" tests/regression/decks/tear_cc_fig5a_beadA_steel.nml -o "$work/bead_a" >"$work/bead_a.log" 2>&1
+bead_a_status=$?
+if ((tight_status == 0 && bead_a_status == 0)) && grep -q '^status = torn$' "$work/tight/summary.txt" &&
+    grep -q 'WARNING\* set_torn: tearing point where the sheet leaves a tool radius of 3.28h, below the 4.66h' "$work/tight.log" &&
+    grep -q '^status = torn$' "$work/bead_a/summary.txt" && ! grep -q 'below the 4.66h' "$work/bead_a.log"; then
+    ok "a tearing point on a radius tighter than the validated beads' warns; bead A's does not"
+else
+    bad "tight-radius warning: exits $tight_status, $bead_a_status; $(grep -c 'below the 4.66h' "$work/tight.log") and $(grep -c 'below the 4.66h' "$work/bead_a.log") warnings"
 fi
 
 echo "robustness: $failures failed"
