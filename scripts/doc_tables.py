@@ -390,6 +390,7 @@ GRADIENT_DECKS = ["input/cc_fig5a_beadA_steel.nml", "input/cc_fig6_beadB_steel.n
                   # beyond the validation table: beads with tighter radii (their
                   # continuum checks kept in docs/validation/continuum/<name>/)
                   "docs/validation/continuum/decks/tight_beadA_steel.nml",
+                  "docs/validation/continuum/decks/tight_beadA_hsla.nml",
                   "docs/validation/continuum/decks/tight_round_aluminium.nml"]
 GRADIENT_VALUES = [0.25, 0.5, 1.0, 2.0]
 
