@@ -517,7 +517,7 @@ contains
       type(controls_type), intent(in) :: ctl
       type(state_type), intent(inout) :: s
       type(run_record), intent(inout) :: rec
-      real(dp), allocatable :: x_old(:), motion(:)
+      real(dp), allocatable :: motion(:)
       integer, allocatable :: pieces(:)
       real(dp) :: x_exit, energy_before(n_energy), h
       logical :: found
@@ -545,7 +545,6 @@ contains
       ! interpolated, and re-equilibration does work against the imbalance
       ! it removes): booked apart, so that the balance still checks the rest
       call energy_totals(m, s, energy_before)
-      x_old = m%x
       motion = s%u - pr%u_prev
       m_before = m
       s_before = s
@@ -559,7 +558,7 @@ contains
          return
       end if
       ! recorded once done: a split that failed (out of memory) is not one
-      call note_split(rec, x_old, pieces, pr%p, x_exit)
+      call note_split(rec, m_before%x, pieces, pr%p, x_exit)
       rec%split%elements_after = m%n_el
       call phase_run_follow(pr, m, alloc_msg)
       if (len(alloc_msg) > 0) then
@@ -585,7 +584,7 @@ contains
                    'on the mesh (docs/theory.md §7.6)', 'split_at_exit')
          return
       end if
-      pr%u_prev = s%u - split_field(x_old, pieces, motion)
+      pr%u_prev = s%u - split_field(m_before%x, pieces, motion)
       pr%nl_old = pack(split_stations(pieces, reshape(pr%nl_old, [1, n_gauss, size(pieces)])), .true.)
       call records_after_split(rec, pieces)
       pr%settling = .true.

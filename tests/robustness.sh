@@ -318,7 +318,7 @@ if ((undone_status == 0)) &&
     summary_has "$work/split_undone" 'status = torn' 'tearing_mesh_dependent = yes' 'split_count = 0' 'elements = 80' &&
     awk -v a="$undone_at" 'BEGIN { exit !(a + 0 > 0.3 && a + 0 < 0.7) }' &&
     grep -q 'WARNING\* split_at_exit: at pull/h = .* the split is undone' "$work/split_undone.log"; then
-    ok "a split that finds no equilibrium is undone: the run tears on the mesh before it (split at ${undone_at}h undone)"
+    ok "a split that finds no equilibrium is undone: the run tears on the mesh before it (split at $(awk -v a="$undone_at" 'BEGIN { printf "%.3f", a }')h undone)"
 else
     bad "a split that finds no equilibrium: exit $undone_status, $(grep -E '^(status|tearing_mesh_dependent|split_count|split_abandoned_over_h|elements) ' "$work/split_undone/summary.txt" 2>/dev/null | tr '\n' ' ')"
 fi
