@@ -19,6 +19,7 @@ module element
    use kinematics, only: strain_measures
    use section, only: section_response, ih_zbar
    use material_law, only: material_law_type
+   use neck_gradient, only: neck_gradient_type, gradient_factor
    implicit none
    private
    public :: element_internal, element_gradients, outer8, v_dofs, w_dofs
@@ -80,9 +81,13 @@ contains
    !>  dface_force [in] (8, 2, n_gauss) its derivative with respect to ul
    !>  gradient    [in] optional: c of the strain-gradient term
    !>                   (1/2) c (d lambda/ds)^2 per unit reference length,
-   !>                   N mm (docs/theory.md §12.7); absent or 0: none
+   !>                   N mm (docs/theory.md §12.7), at the maximum load;
+   !>                   absent or 0: none
+   !>  gradient_curve [in] optional: past the maximum-load strain the
+   !>                   coefficient follows the station's stretch (module
+   !>                   neck_gradient); absent: c throughout
    subroutine element_internal(le, ul, wz, mat, hn, h1, re, ke, gp, pnewdt, face_force, &
-                               dface_force, gradient)
+                               dface_force, gradient, gradient_curve)
       real(dp), intent(in) :: le, ul(8), wz(:)
       class(material_law_type), intent(in) :: mat
       real(dp), contiguous, intent(in) :: hn(:, :, :)
@@ -91,6 +96,7 @@ contains
       real(dp), intent(inout) :: pnewdt
       real(dp), intent(in) :: face_force(2, n_gauss), dface_force(8, 2, n_gauss)
       real(dp), intent(in), optional :: gradient
+      type(neck_gradient_type), intent(in), optional :: gradient_curve
       ! G = dg/dq has two entries per column: column k holds s1(k) in row
       ! row_1(k) (v' or w') and s2(k) in row row_2(k) (v'' or w''), so
       ! B = d(eps, rho)/dq and G^T H G are formed from those entries alone
@@ -99,10 +105,12 @@ contains
       real(dp) :: force, moment, c(2, 2), beps(8), brho(8), hg(4, 4), dv, s1(8), s2(8)
       real(dp) :: ca(8), cb(8), hs(4, 8)
       real(dp) :: face_stress(2), cs(2, 2), lam_f(2), zb_f(2), gs(8, 2)
-      real(dp) :: gc, gam, dgam(4), d2gam(4, 4), bgam(8)
+      real(dp) :: gc, gam, dgam(4), d2gam(4, 4), bgam(8), cf, dcf, d2cf, lam, blam(8), d2lam(4, 4)
+      logical :: follows
       integer :: ig, i, j, f, npt
       gc = 0.0_dp
       if (present(gradient)) gc = gradient
+      follows = present(gradient_curve)
       re = 0.0_dp
       ke = 0.0_dp
       gp = 0.0_dp
@@ -154,11 +162,32 @@ contains
          end do
          if (gc > 0.0_dp) then
             ! the strain-gradient term (1/2) gc (d lambda/ds)^2 (docs/theory.md §12.7)
+            ! with c = gc f(lambda): r = c gam gam' + (1/2) c' gam^2 lambda',
+            ! K = c (gam' gam'^T + gam gam'') + c' gam (gam' lambda'^T +
+            ! lambda' gam'^T) + (1/2) gam^2 (c'' lambda' lambda'^T + c' lambda'')
             call stretch_gradient(g, gam, dgam, d2gam)
             bgam = matmul(dgam, gm)
-            gp(igp_gradient_energy, ig) = 0.5_dp*gc*gam*gam
-            re = re + dv*gc*gam*bgam
-            ke = ke + dv*gc*(outer8(bgam, bgam) + gam*matmul(transpose(gm), matmul(d2gam, gm)))
+            lam = sqrt(g(1)**2 + g(2)**2)
+            cf = 1.0_dp
+            dcf = 0.0_dp
+            d2cf = 0.0_dp
+            if (follows) call gradient_factor(gradient_curve, lam, cf, dcf, d2cf)
+            gp(igp_gradient_energy, ig) = 0.5_dp*gc*cf*gam*gam
+            re = re + dv*gc*cf*gam*bgam
+            ke = ke + dv*gc*cf*(outer8(bgam, bgam) + gam*matmul(transpose(gm), matmul(d2gam, gm)))
+            if (follows) then
+               ! lambda' = (a, b, 0, 0)/lambda; lambda'' on (a, b)
+               blam = (g(1)*gm(1, :) + g(2)*gm(2, :))/lam
+               d2lam = 0.0_dp
+               d2lam(1, 1) = g(2)**2/lam**3
+               d2lam(2, 2) = g(1)**2/lam**3
+               d2lam(1, 2) = -g(1)*g(2)/lam**3
+               d2lam(2, 1) = d2lam(1, 2)
+               re = re + dv*0.5_dp*gc*dcf*gam*gam*blam
+               ke = ke + dv*gc*(dcf*gam*(outer8(blam, bgam) + outer8(bgam, blam)) &
+                                + 0.5_dp*gam*gam*(d2cf*outer8(blam, blam) &
+                                                  + dcf*matmul(transpose(gm), matmul(d2lam, gm))))
+            end if
          end if
       end do
    end subroutine element_internal

@@ -10,6 +10,7 @@ module model
    use contact, only: n_chist, ich_position
    use material_law, only: material_law_type, max_load_strain
    use friction_law, only: friction_law_type
+   use neck_gradient, only: neck_gradient_type
    use errors, only: alloc_message
    use text, only: itoa
    implicit none
@@ -34,7 +35,8 @@ module model
       logical :: current_faces = .false.     ! the tools meet the sheet's current faces (docs/theory.md §5.1)
       class(friction_law_type), allocatable :: friction ! the friction law (module friction_law)
       logical :: contact_section = .false.   ! the tools' normal forces load the section (docs/theory.md §12)
-      real(dp) :: gradient = 0.0_dp          ! c of the strain-gradient term (1/2) c (d lambda/ds)^2, N mm (0: none)
+      real(dp) :: gradient = 0.0_dp          ! c of the strain-gradient term (1/2) c (d lambda/ds)^2, N mm (0: none), at the maximum load
+      type(neck_gradient_type) :: gradient_curve ! how c follows the stretch past the maximum-load strain (module neck_gradient)
       ! load schedule: locking to lock_depth, then pulling by pull_distance
       logical :: left_edge_free = .false.    ! v free under the back tension; else clamped
       real(dp) :: back_tension = 0.0_dp      ! N/mm, on a free left edge

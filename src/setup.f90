@@ -16,6 +16,7 @@ module setup
    use hardening, only: read_curve_file, law_swift, law_voce, law_table, ip_law, ip_table_m
    use material_j2, only: ip_youngs, ip_poisson, ip_r_value, check_props
    use material_law, only: material_law_type
+   use neck_gradient, only: neck_gradient_of
    use law_j2, only: j2_law_of_deck
    use law_combined, only: combined_law_of_deck
    use law_umat, only: umat_law_of_deck
@@ -39,14 +40,12 @@ module setup
    public :: setup_run, material_constants, material_of_deck, smallest_radius, gradient_coefficient, &
              shell_gradient_factor
 
-   !> The strain-gradient coefficient of the sheet, over the plane-strain
-   !> bar's (docs/theory.md §12.7): the bar's coefficient at the maximum
-   !> load, tau* h^3/(12 lambda*^6), brought the DQSK decks' tearing points
-   !> 20-25% before the continuum's necks; this factor keeps the
-   !> coefficient the DQSK steel (eps* = 0.2243, lambda*^6 = e^(6 eps*) =
-   !> 3.84) had with tau* h^3/12, on which bead A matched the continuum's
-   !> neck.  The material enters through lambda*, as in the bar.
-   real(dp), parameter :: shell_gradient_factor = 3.84_dp
+   !> The strain-gradient coefficient of the sheet over the plane-strain
+   !> bar's (docs/theory.md §12.7): a neck that forms against a tool face
+   !> holding the sheet's inner face is half of the neck of a strip 2h
+   !> thick, the held face its plane of symmetry, and (12.11) gives that
+   !> strip (2h)^3/h^3 = 8 times the coefficient, half of it per sheet.
+   real(dp), parameter :: shell_gradient_factor = 4.0_dp
 
 contains
 
@@ -57,8 +56,10 @@ contains
    !> number k at 4 mu* - sigma = -sigma (k h)^2/12 (Hill and Hutchinson's
    !> equations, to second order in k h); a bar with the energy
    !> U(lambda) + c lambda'^2/2 per reference length does so at the same
-   !> state when c = sigma h0^3/(12 lambda^6).  A material that reaches no
-   !> maximum load by a log strain of 3 (eps* = huge) takes eps* = 3.
+   !> state when c = sigma h0^3/(12 lambda^6).  This is c at the maximum
+   !> load; past it the element takes the station's own stretch for lambda*
+   !> (element's gradient_factor).  A material that reaches no maximum load
+   !> by a log strain of 3 (eps* = huge) takes eps* = 3.
    !>  tau_star  [in]  the axial Kirchhoff stress at the maximum load, MPa
    !>  eps_star  [in]  the plane-strain maximum-load log strain
    !>  h         [in]  the sheet's thickness, mm
@@ -128,6 +129,7 @@ contains
       m%contact_section = d%normal_stress == 'contact'
       ! the strain-gradient term (docs/theory.md §12.7)
       m%gradient = d%strain_gradient*gradient_coefficient(m%max_load_stress, m%max_load_strain, h)
+      if (m%gradient > 0.0_dp) m%gradient_curve = neck_gradient_of(m%material, m%max_load_strain)
       m%back_tension = d%back_tension
       m%lock_depth = d%lock_depth
       m%pull_distance = d%pull_distance

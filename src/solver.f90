@@ -266,7 +266,7 @@ contains
          end do
       end if
       call element_internal(le, ul, m%wz, m%material, hn, h1, re, ke, gp, pnewdt, &
-                            face_force, dface_force, m%gradient)
+                            face_force, dface_force, m%gradient, m%gradient_curve)
       if (pnewdt < 1.0_dp) return
       rf = element_roundoff(ke, ul, le)
       ! moments (slope dofs) enter the force scale divided by the thickness
