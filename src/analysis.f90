@@ -243,6 +243,18 @@ contains
             else if (rec%torn) then
                return
             end if
+         else if (rec%torn .and. pr%phase == phase_pull .and. ctl%tearing_criterion == 'load_maximum') then
+            ! a run asked to go on past its tearing point: past the
+            ! load maximum the neck thins on (theory §12.7) until the
+            ! shell finds no equilibrium; the sheet has torn, and the run
+            ! ends there with its results (theory §7.4)
+            rec%stopped_past_tear = .true.
+            rec%stopped_past_tear_load = pr%p
+            call warn('no equilibrium at pull/h = '//num(pr%p/pr%h)//', past the tearing point (at '// &
+                      trim(rec%tear_phase)//'/h = '//num(rec%tear_load/pr%h)//'): the neck has thinned '// &
+                      'further than the shell follows; the run ends there, torn (docs/theory.md §7.4)', &
+                      'failed_attempt')
+            return
          end if
          rec%status = run_no_convergence
          return

@@ -74,6 +74,11 @@ module record
       logical :: torn = .false.
       character(len=8) :: tear_phase = ''
       real(dp) :: tear_load = 0.0_dp, tear_s = 0.0_dp, tear_element = 0.0_dp
+      ! a run asked to go on past its tearing point (stop_at_localization =
+      ! .false.) that found no equilibrium further on: the pull there (the
+      ! neck has thinned further than the shell follows, theory §7.4)
+      logical :: stopped_past_tear = .false.
+      real(dp) :: stopped_past_tear_load = 0.0_dp
       ! the load-maximum candidate: index in the pull history from
       ! split%pull_first of the largest restraining force so far (0: none
       ! yet) and ln(lambda) at every Gauss station (flat list, element by

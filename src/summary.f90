@@ -165,6 +165,7 @@ contains
       else
          call add(text, 'tearing_mesh_dependent = no')
       end if
+      call put(text, 'stopped_past_tearing_over_h', rec%stopped_past_tear_load/h, rec%stopped_past_tear)
       call put(text, 'max_load_strain', m%max_load_strain, m%max_load_strain < 1.0e6_dp)
       ! the first state bent tighter than fold_curvature: past it the forces
       ! depend on the mesh (a hinge one or two elements wide)

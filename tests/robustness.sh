@@ -32,7 +32,9 @@
 #  - a first increment chattering between contact sets (a sheet grazing a
 #    tool over a long span, sharp onset) is named, with its remedy;
 #  - a tearing point on a tool radius tighter than the continuum checks'
-#    warns.
+#    warns;
+#  - a run gone on past its tearing point ends, torn, where it finds no
+#    equilibrium.
 # Usage: tests/robustness.sh [path/to/drawbead]   (run from anywhere)
 set -u
 cd "$(dirname "${BASH_SOURCE[0]}")/.." || exit 2
@@ -357,6 +359,23 @@ if ((tighter_status == 0 && tight_status == 0)) && summary_has "$work/tighter" '
     ok "a tearing point on a radius tighter than the continuum checks' warns; the 3.28h bead's does not"
 else
     bad "tight-radius warning: exits $tighter_status, $tight_status; $(grep -c 'below the 1.97h' "$work/tighter.log") and $(grep -c 'below the 1.97h' "$work/tight.log") warnings"
+fi
+
+# a run asked to go on past its tearing point (stop_at_localization =
+# .false.) that finds no equilibrium further on ends there, torn (theory
+# §7.4): input/cc_fig6_beadB_steel.nml as shipped tears at 1.85h, its neck
+# folds at 2.09h and no equilibrium is found at 2.76h of its 3h (before:
+# no_convergence, exit 2, on a shipped deck)
+"$bin" input/cc_fig6_beadB_steel.nml -o "$work/past_tear" >"$work/past_tear.log" 2>&1
+past_status=$?
+past_at=$(sed -n 's/^stopped_past_tearing_over_h = //p' "$work/past_tear/summary.txt" 2>/dev/null)
+tear_at=$(sed -n 's/^tearing_delta_over_h = //p' "$work/past_tear/summary.txt" 2>/dev/null)
+if ((past_status == 0)) && summary_has "$work/past_tear" 'status = torn' 'tearing_phase = pull' &&
+    awk -v a="$past_at" -v t="$tear_at" 'BEGIN { exit !(a + 0 > t + 0.5 && a + 0 < 3) }' &&
+    grep -q 'WARNING\* failed_attempt: no equilibrium at pull/h = .* past the tearing point' "$work/past_tear.log"; then
+    ok "a run gone on past its tearing point ends, torn, where it finds no equilibrium (at $(awk -v a="$past_at" 'BEGIN { printf "%.2f", a }')h, torn at $(awk -v a="$tear_at" 'BEGIN { printf "%.2f", a }')h)"
+else
+    bad "past the tearing point: exit $past_status, $(grep -E '^(status|tearing_phase|tearing_delta_over_h|stopped_past_tearing_over_h) ' "$work/past_tear/summary.txt" 2>/dev/null | tr '\n' ' ')"
 fi
 
 echo "robustness: $failures failed"
