@@ -61,7 +61,9 @@ contains
       real(dp) :: eps, tau_old, tan_old, t, grid, tau_at(nint(span/curve_spacing) + 1), &
                   slope_at(nint(span/curve_spacing) + 1)
       integer :: i, n
-      g%eps_star = eps_star
+      ! (a law without a maximum load by a log strain of 3 has eps* =
+      ! huge(): it takes 3, as setup's gradient_coefficient does)
+      g%eps_star = min(eps_star, eps_end)
       if (eps_star >= eps_end) then
          allocate (g%tau(0), g%slope(0))
          return
