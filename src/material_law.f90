@@ -43,7 +43,10 @@ module material_law
    use kinds, only: dp
    implicit none
    private
-   public :: material_law_type, max_load_strain
+   public :: material_law_type, max_load_strain, plane_strain_path, path_step
+
+   !> the increment of the axial log strain along plane_strain_path
+   real(dp), parameter :: path_step = 1.0e-4_dp
 
    !> A material law: the section's view of it (module header).
    type, abstract :: material_law_type
@@ -186,11 +189,50 @@ contains
       law_stores_energy = .false.
    end function law_stores_energy
 
+   !> PLANE_STRAIN_PATH: the law driven along plane-strain uniaxial tension
+   !> (width strain held, tau22 = 0) from the undeformed state in increments
+   !> of path_step of the axial log strain: the path of the maximum load
+   !> (max_load_strain) and of the strain-gradient coefficient's curve
+   !> (module neck_gradient).
+   !>  law      [in]  the law
+   !>  n_max    [in]  the increments to drive at most
+   !>  eps      [out] (n_max) the log strain at the end of increment i
+   !>  tau      [out] (n_max) the axial Kirchhoff stress there
+   !>  tangent  [out] (n_max) the continuum tangent d tau/d eps there
+   !>                 (statev(isv_tangent))
+   !>  n        [out] the increments done: n_max, or fewer where the law
+   !>                 asked for a smaller increment
+   subroutine plane_strain_path(law, n_max, eps, tau, tangent, n)
+      class(material_law_type), intent(in) :: law
+      integer, intent(in) :: n_max
+      real(dp), intent(out) :: eps(n_max), tau(n_max), tangent(n_max)
+      integer, intent(out) :: n
+      real(dp) :: stress(1, 2), statev(1, law%n_state), ddsdde(1, 2, 2), sse(1), spd(1), pnewdt, e
+      integer :: i
+      stress = 0.0_dp
+      statev = 0.0_dp
+      sse = 0.0_dp
+      spd = 0.0_dp
+      e = 0.0_dp
+      n = 0
+      do i = 1, n_max
+         pnewdt = 1.0_dp
+         call law%update(1, stress, statev, ddsdde, sse, spd, [e], &
+                         reshape([path_step, 0.0_dp], [1, 2]), [0.0_dp], pnewdt)
+         if (pnewdt < 1.0_dp) return
+         e = e + path_step
+         n = i
+         eps(i) = e
+         tau(i) = stress(1, 1)
+         tangent(i) = statev(1, law%isv_tangent)
+      end do
+   end subroutine plane_strain_path
+
    !> MAX_LOAD_STRAIN: the axial log strain at maximum load in plane-strain
    !> uniaxial tension (width strain held, tau22 = 0), where the continuum
    !> tangent statev(isv_tangent) falls to the stress, d tau/d eps = tau
    !> (docs/theory.md §7): the sheet's forming limit in plane strain (FLD0).
-   !> Found by driving the law along the path in increments of 1e-4 and
+   !> Found by driving the law along the path (plane_strain_path) and
    !> interpolating the crossing.
    !>  law     [in]  the law
    !>  tau_max [out] optional: the axial Kirchhoff stress at that strain (at
@@ -201,28 +243,20 @@ contains
       class(material_law_type), intent(in) :: law
       real(dp), intent(out), optional :: tau_max
       real(dp) :: eps_max
-      real(dp), parameter :: step = 1.0e-4_dp
-      real(dp) :: stress(1, 2), statev(1, law%n_state), ddsdde(1, 2, 2), sse(1), spd(1), pnewdt
-      real(dp) :: eps, g, g_old
-      integer :: i
-      stress = 0.0_dp
-      statev = 0.0_dp
-      sse = 0.0_dp
-      spd = 0.0_dp
-      eps = 0.0_dp
-      g_old = 1.0_dp
+      integer, parameter :: n_max = 30000
+      real(dp), allocatable :: eps(:), tau(:), tangent(:)
+      real(dp) :: g, g_old
+      integer :: i, n
+      allocate (eps(n_max), tau(n_max), tangent(n_max))
+      call plane_strain_path(law, n_max, eps, tau, tangent, n)
       eps_max = huge(1.0_dp)
       if (present(tau_max)) tau_max = 0.0_dp
-      do i = 1, 30000
-         pnewdt = 1.0_dp
-         call law%update(1, stress, statev, ddsdde, sse, spd, [eps], &
-                         reshape([step, 0.0_dp], [1, 2]), [0.0_dp], pnewdt)
-         if (pnewdt < 1.0_dp) return
-         eps = eps + step
-         if (present(tau_max)) tau_max = stress(1, 1)
-         g = statev(1, law%isv_tangent) - stress(1, 1)
+      g_old = 1.0_dp
+      do i = 1, n
+         if (present(tau_max)) tau_max = tau(i)
+         g = tangent(i) - tau(i)
          if (g <= 0.0_dp) then
-            eps_max = eps - step*g/(g - g_old)
+            eps_max = eps(i) - path_step*g/(g - g_old)
             return
          end if
          g_old = g

@@ -17,7 +17,7 @@
 !> derivatives (the element's residual and tangent) are continuous.
 module neck_gradient
    use kinds, only: dp
-   use material_law, only: material_law_type
+   use material_law, only: material_law_type, plane_strain_path, path_step
    implicit none
    private
    public :: neck_gradient_type, neck_gradient_of, gradient_factor, gradient_onset_width, &
@@ -43,12 +43,11 @@ module neck_gradient
 contains
 
    !> NECK_GRADIENT_OF: the stretch dependence of the coefficient of a law:
-   !> the law driven along plane-strain tension (width strain held,
-   !> tau22 = 0) in increments of 1e-4, as max_load_strain does, from 0 to
-   !> eps* + 2 (or a log strain of 3, or the law's last increment), tau and
-   !> the continuum tangent d tau/d eps (statev(isv_tangent)) recorded at
-   !> eps* + (k - 1) curve_spacing by linear interpolation between
-   !> increments.
+   !> the law driven along plane-strain tension (material_law's
+   !> plane_strain_path, as max_load_strain does) from 0 to eps* + 2 (or a
+   !> log strain of 3, or the law's last increment), tau and the continuum
+   !> tangent d tau/d eps recorded at eps* + (k - 1) curve_spacing by
+   !> linear interpolation between increments.
    !>  law       [in]  the material law
    !>  eps_star  [in]  its maximum-load log strain (material_law's
    !>                  max_load_strain; >= 3: no table, c* throughout)
@@ -56,11 +55,11 @@ contains
       class(material_law_type), intent(in) :: law
       real(dp), intent(in) :: eps_star
       type(neck_gradient_type) :: g
-      real(dp), parameter :: step = 1.0e-4_dp, span = 2.0_dp, eps_end = 3.0_dp
-      real(dp) :: stress(1, 2), statev(1, law%n_state), ddsdde(1, 2, 2), sse(1), spd(1), pnewdt
-      real(dp) :: eps, tau_old, tan_old, t, grid, tau_at(nint(span/curve_spacing) + 1), &
+      real(dp), parameter :: span = 2.0_dp, eps_end = 3.0_dp
+      real(dp), allocatable :: eps(:), tau(:), tangent(:)
+      real(dp) :: t, grid, e0, tau0, tan0, tau_at(nint(span/curve_spacing) + 1), &
                   slope_at(nint(span/curve_spacing) + 1)
-      integer :: i, n
+      integer :: i, n, n_path, n_done
       ! (a law without a maximum load by a log strain of 3 has eps* =
       ! huge(): it takes 3, as setup's gradient_coefficient does)
       g%eps_star = min(eps_star, eps_end)
@@ -68,31 +67,25 @@ contains
          allocate (g%tau(0), g%slope(0))
          return
       end if
-      stress = 0.0_dp
-      statev = 0.0_dp
-      sse = 0.0_dp
-      spd = 0.0_dp
-      eps = 0.0_dp
-      tau_old = 0.0_dp
-      tan_old = 0.0_dp
+      n_path = nint(min(eps_star + span, eps_end)/path_step) + 1
+      allocate (eps(n_path), tau(n_path), tangent(n_path))
+      call plane_strain_path(law, n_path, eps, tau, tangent, n_done)
       n = 0
       grid = eps_star
-      do i = 1, nint(eps_end/step)
-         pnewdt = 1.0_dp
-         call law%update(1, stress, statev, ddsdde, sse, spd, [eps], &
-                         reshape([step, 0.0_dp], [1, 2]), [0.0_dp], pnewdt)
-         if (pnewdt < 1.0_dp) exit
-         eps = eps + step
-         do while (grid <= eps .and. n < size(tau_at))
-            t = (grid - (eps - step))/step
+      e0 = 0.0_dp
+      tau0 = 0.0_dp
+      tan0 = 0.0_dp
+      do i = 1, n_done
+         do while (grid <= eps(i) .and. n < size(tau_at))
+            t = (grid - e0)/(eps(i) - e0)
             n = n + 1
-            tau_at(n) = (1.0_dp - t)*tau_old + t*stress(1, 1)
-            slope_at(n) = (1.0_dp - t)*tan_old + t*statev(1, law%isv_tangent)
+            tau_at(n) = (1.0_dp - t)*tau0 + t*tau(i)
+            slope_at(n) = (1.0_dp - t)*tan0 + t*tangent(i)
             grid = eps_star + n*curve_spacing
          end do
-         if (n == size(tau_at)) exit
-         tau_old = stress(1, 1)
-         tan_old = statev(1, law%isv_tangent)
+         e0 = eps(i)
+         tau0 = tau(i)
+         tan0 = tangent(i)
       end do
       if (n < 2 .or. tau_at(1) <= 0.0_dp) then
          allocate (g%tau(0), g%slope(0))
