@@ -23,7 +23,8 @@ module stepper
    use solver, only: newton_result, newton_cutback, newton_singular
    use record, only: run_record, record_pull, record_lock, run_out_of_memory
    use remesh, only: last_radius_exit, exit_pieces, exit_resplit_before, split_stations
-   use tearing, only: strain_limit_indicator, maximum_approaching
+   use tearing, only: strain_limit_indicator
+   use load_maximum, only: maximum_approaching
    use step_control, only: next_increment, bound_after_failure, bound_past_section_maximum, past_turned_maximum
    use energy, only: energy_totals, add_increment_work
    implicit none
