@@ -105,7 +105,7 @@ contains
       real(dp) :: force, moment, c(2, 2), beps(8), brho(8), hg(4, 4), dv, s1(8), s2(8)
       real(dp) :: ca(8), cb(8), hs(4, 8)
       real(dp) :: face_stress(2), cs(2, 2), lam_f(2), zb_f(2), gs(8, 2)
-      real(dp) :: gc, gam, dgam(4), d2gam(4, 4), bgam(8), cf, dcf, d2cf, lam, blam(8), d2lam(4, 4)
+      real(dp) :: gc, gam, dgam(4), d2gam(4, 4), bgam(8), cf, dcf, d2cf
       logical :: follows
       integer :: ig, i, j, f, npt
       gc = 0.0_dp
@@ -167,26 +167,19 @@ contains
             ! lambda' gam'^T) + (1/2) gam^2 (c'' lambda' lambda'^T + c' lambda'')
             call stretch_gradient(g, gam, dgam, d2gam)
             bgam = matmul(dgam, gm)
-            lam = sqrt(g(1)**2 + g(2)**2)
             cf = 1.0_dp
             dcf = 0.0_dp
             d2cf = 0.0_dp
-            if (follows) call gradient_factor(gradient_curve, lam, cf, dcf, d2cf)
+            ! (lambda = 1 + eps: its derivatives are eps's, beps and d2eps)
+            if (follows) call gradient_factor(gradient_curve, 1.0_dp + eps, cf, dcf, d2cf)
             gp(igp_gradient_energy, ig) = 0.5_dp*gc*cf*gam*gam
             re = re + dv*gc*cf*gam*bgam
             ke = ke + dv*gc*cf*(outer8(bgam, bgam) + gam*matmul(transpose(gm), matmul(d2gam, gm)))
             if (follows) then
-               ! lambda' = (a, b, 0, 0)/lambda; lambda'' on (a, b)
-               blam = (g(1)*gm(1, :) + g(2)*gm(2, :))/lam
-               d2lam = 0.0_dp
-               d2lam(1, 1) = g(2)**2/lam**3
-               d2lam(2, 2) = g(1)**2/lam**3
-               d2lam(1, 2) = -g(1)*g(2)/lam**3
-               d2lam(2, 1) = d2lam(1, 2)
-               re = re + dv*0.5_dp*gc*dcf*gam*gam*blam
-               ke = ke + dv*gc*(dcf*gam*(outer8(blam, bgam) + outer8(bgam, blam)) &
-                                + 0.5_dp*gam*gam*(d2cf*outer8(blam, blam) &
-                                                  + dcf*matmul(transpose(gm), matmul(d2lam, gm))))
+               re = re + dv*0.5_dp*gc*dcf*gam*gam*beps
+               ke = ke + dv*gc*(dcf*gam*(outer8(beps, bgam) + outer8(bgam, beps)) &
+                                + 0.5_dp*gam*gam*(d2cf*outer8(beps, beps) &
+                                                  + dcf*matmul(transpose(gm), matmul(d2eps, gm))))
             end if
          end if
       end do
