@@ -28,10 +28,11 @@ module load_maximum
    !> about 1% after a flat maximum without any neck, as the tools close
    !> on the wrapped sheet: the continuum's by 0.94% from 90% of full lock
    !> to full lock on bead A with an HSLA steel (thickness strain -0.32 at
-   !> both male corners alike), the program's by 1.1-1.5% on 80-640
-   !> elements; where the continuum necks while locking the tension falls
-   !> 4.5-10% by full lock.  A maximum of the tension is a neck once it
-   !> has fallen lock_force_drop below it (docs/theory.md §7.4)
+   !> both male corners alike), the program's by 1.5-3.0% on 80-640
+   !> elements with no station localizing as a neck does; where the
+   !> continuum necks while locking the tension falls 9-18% by full lock.
+   !> A maximum of the tension is a neck once it has fallen
+   !> lock_force_drop below it and a station localizes (docs/theory.md §7.4)
    real(dp), parameter :: lock_force_drop = 0.02_dp
    !> ... and the force has stayed that far below it over a pull of at least
    !> tear_confirm_pull (in h): past the section's maximum load the path may

@@ -58,7 +58,7 @@ contains
    !> U(lambda) + c lambda'^2/2 per reference length does so at the same
    !> state when c = sigma h0^3/(12 lambda^6).  This is c at the maximum
    !> load; past it the element takes the station's own stretch for lambda*
-   !> (element's gradient_factor).  A material that reaches no maximum load
+   !> (module neck_gradient).  A material that reaches no maximum load
    !> by a log strain of 3 (eps* = huge) takes eps* = 3.
    !>  tau_star  [in]  the axial Kirchhoff stress at the maximum load, MPa
    !>  eps_star  [in]  the plane-strain maximum-load log strain
