@@ -312,6 +312,9 @@ contains
    !>  delta, force  [in] the pull history (ascending delta), mm, N/mm
    !>  h             [in] thickness, mm
    !>  capacity      [in] the sheet's plane-strain capacity tau* h, N/mm
+   !>                     (0: no bound on the force: stepper's
+   !>                     decide_split, a clamped sheet past a section's
+   !>                     maximum load)
    pure function maximum_approaching(delta, force, h, capacity) result(yes)
       real(dp), intent(in) :: delta(:), force(:), h, capacity
       logical :: yes
