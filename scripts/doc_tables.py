@@ -391,7 +391,12 @@ GRADIENT_DECKS = ["input/cc_fig5a_beadA_steel.nml", "input/cc_fig6_beadB_steel.n
                   # continuum checks kept in docs/validation/continuum/<name>/)
                   "docs/validation/continuum/decks/tight_beadA_steel.nml",
                   "docs/validation/continuum/decks/tight_beadA_hsla.nml",
-                  "docs/validation/continuum/decks/tight_round_aluminium.nml"]
+                  "docs/validation/continuum/decks/tight_round_aluminium.nml",
+                  # the cases beyond the tables (docs/validation.md)
+                  "docs/validation/continuum/decks/unseen_beadA_aa5754.nml",
+                  "docs/validation/continuum/decks/unseen_beadC_steel.nml",
+                  "docs/validation/continuum/decks/unseen_beadB_aa6111_mu015.nml",
+                  "docs/validation/continuum/decks/unseen_beadC_stainless.nml"]
 GRADIENT_VALUES = [0.25, 0.5, 1.0, 2.0]
 
 
@@ -500,6 +505,79 @@ def gen_tearing_friction(ctx):
               + ["as shipped / continuum", "as shipped against %d (-m), %%" % FRICTION_ELEMENTS[-1],
                  "place s/h (as shipped)", "mesh dependent (as shipped)"])
     align = ["---:"] * (len(header) - 1) + ["---"]
+    return lambda raw: markdown_table(header, align, rows, raw)
+
+
+# cases the program was not tuned on, chosen after its defaults were set:
+# their decks in docs/validation/continuum/decks/, their continuum checks
+# kept in docs/validation/continuum/<name>/ (docs/validation.md, cases
+# beyond the tables)
+UNSEEN_CASES = ["unseen_beadA_aa5754", "unseen_beadC_steel", "unseen_beadB_aa6111_mu015",
+                "unseen_beadC_stainless"]
+UNSEEN_ELEMENTS = [80, 160, 640]
+# the compared numbers (continuum_results.py metrics): label, key
+UNSEEN_RATIOS = [("punch force, 98% of lock", "punch_force_98_N_per_mm"),
+                 ("tension, 98% of lock", "lock_tension_98_N_per_mm"),
+                 ("largest restraining force", "max_restraining_force_N_per_mm"),
+                 ("lift at 1h", "lift_at_1h_N_per_mm"),
+                 ("peak strain after locking", "peak_strain_lock")]
+
+
+def gen_unseen_cases(ctx):
+    """docs/validation.md: the UNSEEN_CASES against their kept continuum
+    checks: the deck as it is (pulled through, not stopped) read by
+    scripts/continuum_results.py metrics as scripts/validation_table.sh
+    reads the table's cases, its ratios to the continuum's numbers; and
+    the tearing point of the deck stopped at it, scripts/convergence.sh -m
+    on UNSEEN_ELEMENTS and -s (every increment halved), against the
+    continuum's neck (the pull at its largest restraining force)."""
+    names = [n for n in UNSEEN_CASES
+             if os.path.exists(os.path.join(ROOT, "docs", "validation", "continuum", n, "continuum_summary.txt"))]
+    decks = [os.path.join("docs", "validation", "continuum", "decks", n + ".nml") for n in names]
+    stopped = stopped_decks(ctx, "unseen_stopped", decks)
+    counts = " ".join(str(n) for n in UNSEEN_ELEMENTS)
+    script_output(ctx, ["scripts/convergence.sh", "-m", "-o", os.path.join(ctx.tmp, "unseen_mesh"), "-n", counts]
+                  + stopped)
+    script_output(ctx, ["scripts/convergence.sh", "-s", "-o", os.path.join(ctx.tmp, "unseen_step")] + stopped)
+    rows = []
+    for name, deck in zip(names, decks):
+        out = os.path.join(ctx.tmp, "unseen_whole", name)
+        os.makedirs(out, exist_ok=True)
+        summary, status = run_deck(ctx.program, deck, out, "run", one_thread=True)
+        if status != 0 or not summary:
+            raise RuntimeError(f"unseen_cases: {deck} exited with status {status}")
+        subprocess.run([sys.executable, "scripts/continuum_model.py", os.path.join(out, "run.log"),
+                        os.path.join(out, "model")], cwd=ROOT, stdout=subprocess.DEVNULL, check=True)
+        metrics = subprocess.run([sys.executable, "scripts/continuum_results.py", "metrics", os.path.join(out, "run"),
+                                  os.path.join(out, "model", "continuum_model.json")], cwd=ROOT, check=True,
+                                 stdout=subprocess.PIPE, text=True).stdout
+        prog = {}
+        for line in metrics.splitlines():
+            if " = " in line and not line.startswith("#"):
+                key, value = line.split(" = ", 1)
+                prog[key.strip()] = value.strip()
+        cont = read_summary(os.path.join(ROOT, "docs", "validation", "continuum", name, "continuum_summary.txt"))
+        neck = real(cont, "max_restraining_force_at_delta_over_h")
+        tears = [real(read_summary(os.path.join(ctx.tmp, "unseen_mesh", f"{name}_{n}", "summary.txt")),
+                      "tearing_delta_over_h") for n in UNSEEN_ELEMENTS]
+        halved = real(read_summary(os.path.join(ctx.tmp, "unseen_step", f"{name}_step0.5", "summary.txt")),
+                      "tearing_delta_over_h")
+        first = read_summary(os.path.join(ctx.tmp, "unseen_mesh", f"{name}_{UNSEEN_ELEMENTS[0]}", "summary.txt"))
+
+        def pct(a, b):
+            q = quotient(a, b)
+            return Num(None if q is None else 100.0 * (q - 1.0), "+.1f")
+        rows.append([name, first.get("tearing_phase", "none"), Num(neck, ".3f")] + [Num(x, ".3f") for x in tears]
+                    + [Num(quotient(tears[0], neck), ".2f"), pct(tears[0], tears[-1]), pct(tears[1], tears[-1]),
+                       pct(halved, tears[0])]
+                    + [Num(quotient(real(prog, key), real(cont, key)), ".3f") for _, key in UNSEEN_RATIOS])
+    header = (["case", "phase", "continuum's neck Δ/h"] + ["tearing Δ/h, %d el." % n for n in UNSEEN_ELEMENTS]
+              + ["%d el. / continuum" % UNSEEN_ELEMENTS[0],
+                 "%d against %d, %%" % (UNSEEN_ELEMENTS[0], UNSEEN_ELEMENTS[-1]),
+                 "%d against %d, %%" % (UNSEEN_ELEMENTS[1], UNSEEN_ELEMENTS[-1]),
+                 "steps halved, %"]
+              + [label + ", / continuum" for label, _ in UNSEEN_RATIOS])
+    align = ["---", "---"] + ["---:"] * (len(header) - 2)
     return lambda raw: markdown_table(header, align, rows, raw)
 
 
@@ -1300,6 +1378,9 @@ GENERATORS = {
     "tearing_friction": ("docs/validation.md", gen_tearing_friction,
                          "cc_fig5a with friction 0, 0.05, 0.1 and 0.2 stopped at tearing on 80, 160, 640 elements"
                          " against the kept continuum necks"),
+    "unseen_cases": ("docs/validation.md", gen_unseen_cases,
+                     "the cases beyond the tables (docs/validation/continuum/decks/unseen_*) against their kept"
+                     " continuum checks; convergence.sh -m and -s stopped at tearing"),
     "tearing_step_sweep": ("docs/validation.md", gen_tearing_step_sweep,
                            "scripts/convergence.sh -s -f \"1 0.5 0.25 0.125\" on cc_fig5a stopped at tearing"),
     "strain_gradient_study": ("docs/theory.md", gen_strain_gradient_study,
