@@ -531,8 +531,10 @@ def gen_unseen_cases(ctx):
     the tearing point of the deck stopped at it, scripts/convergence.sh -m
     on UNSEEN_ELEMENTS and -s (every increment halved), against the
     continuum's neck (the pull at its largest restraining force)."""
-    names = [n for n in UNSEEN_CASES
-             if os.path.exists(os.path.join(ROOT, "docs", "validation", "continuum", n, "continuum_summary.txt"))]
+    names = UNSEEN_CASES
+    for n in names:
+        if not os.path.exists(os.path.join(ROOT, "docs", "validation", "continuum", n, "continuum_summary.txt")):
+            raise RuntimeError(f"unseen_cases: no kept continuum check docs/validation/continuum/{n}/")
     decks = [os.path.join("docs", "validation", "continuum", "decks", n + ".nml") for n in names]
     stopped = stopped_decks(ctx, "unseen_stopped", decks)
     counts = " ".join(str(n) for n in UNSEEN_ELEMENTS)
@@ -560,8 +562,8 @@ def gen_unseen_cases(ctx):
         neck = real(cont, "max_restraining_force_at_delta_over_h")
         tears = [real(read_summary(os.path.join(ctx.tmp, "unseen_mesh", f"{name}_{n}", "summary.txt")),
                       "tearing_delta_over_h") for n in UNSEEN_ELEMENTS]
-        halved = real(read_summary(os.path.join(ctx.tmp, "unseen_step", f"{name}_step0.5", "summary.txt")),
-                      "tearing_delta_over_h")
+        own, halved = [real(read_summary(os.path.join(ctx.tmp, "unseen_step", f"{name}_step{f}", "summary.txt")),
+                            "tearing_delta_over_h") for f in ("1", "0.5")]
         first = read_summary(os.path.join(ctx.tmp, "unseen_mesh", f"{name}_{UNSEEN_ELEMENTS[0]}", "summary.txt"))
 
         def pct(a, b):
@@ -569,7 +571,7 @@ def gen_unseen_cases(ctx):
             return Num(None if q is None else 100.0 * (q - 1.0), "+.1f")
         rows.append([name, first.get("tearing_phase", "none"), Num(neck, ".3f")] + [Num(x, ".3f") for x in tears]
                     + [Num(quotient(tears[0], neck), ".2f"), pct(tears[0], tears[-1]), pct(tears[1], tears[-1]),
-                       pct(halved, tears[0])]
+                       pct(halved, own)]
                     + [Num(quotient(real(prog, key), real(cont, key)), ".3f") for _, key in UNSEEN_RATIOS])
     header = (["case", "phase", "continuum's neck Δ/h"] + ["tearing Δ/h, %d el." % n for n in UNSEEN_ELEMENTS]
               + ["%d el. / continuum" % UNSEEN_ELEMENTS[0],

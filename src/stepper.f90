@@ -261,14 +261,10 @@ contains
    !> the first split is due; from then on a split is due whenever elements
    !> longer than m%exit_element are drawn within exit_resplit_before h of
    !> the exit of the last radius (coarse_near_exit).  The force must be at
-   !> least approach_capacity of the plane-strain capacity tau* h, unless
-   !> the edge is clamped and a section is past its maximum load (the
-   !> smallest indicator (7.2) of the converged state at or below 0): the
-   !> bound keeps a free edge drawing steadily (its force flattens on a
-   !> plateau, no neck) on its mesh, but a clamped sheet cannot draw in, and
-   !> once a section can localize its flattening force nears a maximum that
-   !> may lie well below that capacity (a stainless steel, n = 0.45, on a
-   !> bead with 3.5h radii: 0.59 tau* h).
+   !> least approach_capacity of the sheet's plane-strain load capacity
+   !> N* = tau* h exp(-eps*), the largest force per width a uniform strip
+   !> carries (docs/theory.md §7.6): a free edge drawing steadily (its force
+   !> flattening on a plateau, no neck) stays on its mesh.
    !>  m      [in]     model
    !>  s      [in]     the converged state
    !>  phase  [in]     phase_lock or phase_pull
@@ -285,12 +281,8 @@ contains
       if (rec%split%armed) then
          due = coarse_near_exit(m, s)
       else
-         ! (the capacity bound waived: a clamped sheet with a section past
-         ! its maximum load)
          rec%split%armed = maximum_approaching(rec%pull_delta(1:rec%n_pull), rec%pull_force(1:rec%n_pull), &
-                                               m%thickness, merge(0.0_dp, m%max_load_stress*m%thickness, &
-                                                                  .not. m%left_edge_free &
-                                                                  .and. minval(s%indicator) <= 0.0_dp))
+                                               m%thickness, m%max_load_stress*m%thickness*exp(-m%max_load_strain))
          due = rec%split%armed
       end if
    end subroutine decide_split
