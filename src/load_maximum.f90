@@ -55,8 +55,8 @@ module load_maximum
    !> of its slope over [0.05h, 0.15h] while the force is at least
    !> approach_capacity of the sheet's plane-strain load capacity
    !> N* = tau* h exp(-eps*) (docs/theory.md §7.6): every neck of the
-   !> validation's clamped and profile beads peaks at 0.91-0.96 N*, whatever
-   !> the material; the free edges that draw steadily flatten at 0.46-0.69 N*
+   !> validation peaks at 0.89-0.96 N*, whatever the material; the free
+   !> edges that draw steadily flatten at 0.46-0.69 N*
    real(dp), parameter :: approach_slope_ratio = 0.5_dp, approach_window = 0.1_dp, &
                           approach_capacity = 0.75_dp
 
