@@ -139,6 +139,26 @@ contains
          end do
          re = re + dv*(force*beps + moment*brho)
          hg = dv*(force*d2eps + moment*d2rho)
+         if (gc > 0.0_dp) then
+            ! the strain-gradient term (1/2) c (d lambda/ds)^2 (docs/theory.md
+            ! §12.7), c = gc f(lambda), lambda = 1 + eps (its derivatives are
+            ! eps's, beps and d2eps): r = c gam gam' + (1/2) c' gam^2 lambda';
+            ! K = c (gam' gam'^T + gam gam'') + c' gam (gam' lambda'^T +
+            ! lambda' gam'^T) + (1/2) gam^2 (c'' lambda' lambda'^T + c' lambda''),
+            ! whose second-derivative parts gam'' and lambda'' join H (and the
+            ! sparse G^T H G below), the rank-one parts added after it
+            call stretch_gradient(g, gam, dgam, d2gam)
+            do j = 1, 8
+               bgam(j) = dgam(row_1(j))*s1(j) + dgam(row_2(j))*s2(j)
+            end do
+            cf = 1.0_dp
+            dcf = 0.0_dp
+            d2cf = 0.0_dp
+            if (follows) call gradient_factor(gradient_curve, 1.0_dp + eps, cf, dcf, d2cf)
+            gp(igp_gradient_energy, ig) = 0.5_dp*gc*cf*gam*gam
+            re = re + dv*gc*(cf*gam*bgam + 0.5_dp*dcf*gam*gam*beps)
+            hg = hg + dv*gc*(cf*gam*d2gam + 0.5_dp*dcf*gam*gam*d2eps)
+         end if
          ! H G, column by column, then G^T (H G) row by row
          do j = 1, 8
             hs(:, j) = hg(:, row_1(j))*s1(j) + hg(:, row_2(j))*s2(j)
@@ -161,26 +181,9 @@ contains
             end do
          end do
          if (gc > 0.0_dp) then
-            ! the strain-gradient term (1/2) gc (d lambda/ds)^2 (docs/theory.md §12.7)
-            ! with c = gc f(lambda): r = c gam gam' + (1/2) c' gam^2 lambda',
-            ! K = c (gam' gam'^T + gam gam'') + c' gam (gam' lambda'^T +
-            ! lambda' gam'^T) + (1/2) gam^2 (c'' lambda' lambda'^T + c' lambda'')
-            call stretch_gradient(g, gam, dgam, d2gam)
-            bgam = matmul(dgam, gm)
-            cf = 1.0_dp
-            dcf = 0.0_dp
-            d2cf = 0.0_dp
-            ! (lambda = 1 + eps: its derivatives are eps's, beps and d2eps)
-            if (follows) call gradient_factor(gradient_curve, 1.0_dp + eps, cf, dcf, d2cf)
-            gp(igp_gradient_energy, ig) = 0.5_dp*gc*cf*gam*gam
-            re = re + dv*gc*cf*gam*bgam
-            ke = ke + dv*gc*cf*(outer8(bgam, bgam) + gam*matmul(transpose(gm), matmul(d2gam, gm)))
-            if (follows) then
-               re = re + dv*0.5_dp*gc*dcf*gam*gam*beps
-               ke = ke + dv*gc*(dcf*gam*(outer8(beps, bgam) + outer8(bgam, beps)) &
-                                + 0.5_dp*gam*gam*(d2cf*outer8(beps, beps) &
-                                                  + dcf*matmul(transpose(gm), matmul(d2eps, gm))))
-            end if
+            ke = ke + dv*gc*cf*outer8(bgam, bgam)
+            if (follows) ke = ke + dv*gc*(dcf*gam*(outer8(beps, bgam) + outer8(bgam, beps)) &
+                                          + 0.5_dp*gam*gam*d2cf*outer8(beps, beps))
          end if
       end do
    end subroutine element_internal
