@@ -448,6 +448,186 @@ def gen_strain_gradient_study(ctx):
     return lambda raw: markdown_table(header, align, rows, raw)
 
 
+def pull_force_curve(path):
+    """(delta/h, N) of a pull.dat (the program's or the continuum's, columns
+    1 and 3), rows with a non-finite N left out."""
+    xs, ys = [], []
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            cols = line.split()
+            x, y = float(cols[0]), float(cols[2])
+            if math.isfinite(x) and math.isfinite(y):
+                xs.append(x)
+                ys.append(y)
+    return xs, ys
+
+
+def curve_at(xs, ys, x):
+    """ys at x, linear between the rows around it; None outside the rows."""
+    for i in range(1, len(xs)):
+        if xs[i - 1] <= x <= xs[i]:
+            if xs[i] == xs[i - 1]:
+                return ys[i]
+            w = (x - xs[i - 1]) / (xs[i] - xs[i - 1])
+            return ys[i - 1] + w * (ys[i] - ys[i - 1])
+    return None
+
+
+def plateau(xs, ys, share):
+    """The span of delta/h around the largest N over which N stays within
+    share of it (the rows on either side of the largest, the ends where it
+    leaves interpolated linearly): (first, last)."""
+    k = max(range(len(ys)), key=lambda i: ys[i])
+    level = ys[k] * (1.0 - share)
+    ends = []
+    for step in (-1, 1):
+        i = k
+        while 0 <= i + step < len(ys) and ys[i + step] >= level:
+            i += step
+        j = i + step
+        if 0 <= j < len(ys) and ys[j] != ys[i]:
+            ends.append(xs[i] + (level - ys[i]) / (ys[j] - ys[i]) * (xs[j] - xs[i]))
+        else:
+            ends.append(xs[i])
+    return ends[0], ends[1]
+
+
+# the share of the largest restraining force within which tearing_flatness
+# gives each model's span around its maximum (a quarter of the 1% that
+# confirms a neck, theory 7.4)
+FLATNESS_SHARE = 0.0025
+
+
+def gen_tearing_flatness(ctx):
+    """docs/validation.md: how flat the restraining force is at the tearing
+    point: the GRADIENT_DECKS stopped at tearing (80 elements, as shipped)
+    against their kept continuum runs: the tearing point and the
+    continuum's neck, the continuum's force at the program's tearing point
+    and the program's at the continuum's neck (each over its own largest),
+    the span of the pull over which each model's force is within
+    FLATNESS_SHARE of its largest, and the largest forces' ratio."""
+    decks = stopped_decks(ctx, "flatness_decks", GRADIENT_DECKS)
+    jobs = [("flatness_" + os.path.basename(d)[:-4], d) for d in decks]
+    res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    rows = []
+    for deck in decks:
+        base = os.path.basename(deck)[:-4]
+        folder = os.path.join(ROOT, "docs", "validation", "continuum", base)
+        cont = read_summary(os.path.join(folder, "continuum_summary.txt"))
+        neck = real(cont, "max_restraining_force_at_delta_over_h")
+        tear = real(res["flatness_" + base], "tearing_delta_over_h")
+        cx, cy = pull_force_curve(os.path.join(folder, "pull.dat"))
+        px, py = pull_force_curve(os.path.join(ctx.tmp, "flatness_" + base, "pull.dat"))
+        c_at = curve_at(cx, cy, tear) if tear is not None else None
+        p_at = curve_at(px, py, neck) if neck is not None else None
+        c0, c1 = plateau(cx, cy, FLATNESS_SHARE)
+        p0, p1 = plateau(px, py, FLATNESS_SHARE)
+        rows.append([base, Num(neck, ".3f"), Num(tear, ".3f"), Num(quotient(tear, neck), ".3f"),
+                     Num(quotient(c_at, max(cy)), ".4f"), Num(quotient(p_at, max(py)), ".4f"),
+                     "%.2f-%.2f" % (c0, c1), "%.2f-%.2f" % (p0, p1),
+                     Num(quotient(max(py), max(cy)), ".4f")])
+    pct = "%g%%" % (100.0 * FLATNESS_SHARE)
+    header = ["deck (stopped at tearing, 80 elements)", "continuum's neck Δ/h", "tearing Δ/h",
+              "/ continuum", "continuum's N at the tearing point / its largest",
+              "program's N at the continuum's neck / its largest",
+              f"continuum's N within {pct} of its largest, Δ/h",
+              f"program's N within {pct} of its largest, Δ/h", "largest N, program / continuum"]
+    align = ["---"] + ["---:"] * 8
+    return lambda raw: markdown_table(header, align, rows, raw)
+
+
+# the stainless-like sheet pulled 4.8h, before the continuum's maximum
+# (docs/validation/continuum/decks/unseen_beadC_stainless_pull4.8h.nml),
+# and the reference positions s/h of its strain rows: upstream of the
+# neck, through it, and the straight sheet downstream
+STAINLESS_EARLY_DECK = "docs/validation/continuum/decks/unseen_beadC_stainless_pull4.8h.nml"
+STAINLESS_EARLY_S = [4.0, 5.0, 6.0, 6.5, 7.0, 7.25, 7.5, 7.75, 8.0, 8.5, 9.0, 10.0, 12.0, 14.0]
+
+
+# variants of the stainless-like deck: (what, text of the deck, its
+# replacement); none: the deck as it is
+STAINLESS_VARIANTS = [(None, None, None),
+                      ("n_elements = 160", "n_elements = 80", "n_elements = 160"),
+                      ("thickness_points = 41", "\n&material\n", "\n&material\n   thickness_points = 41,\n"),
+                      ("penalty = 0.1", "\n&tools\n", "\n&tools\n   penalty = 0.1,\n"),
+                      ("penalty = 0.37, contact_smoothing = 0.001", "\n&tools\n",
+                       "\n&tools\n   penalty = 0.37, contact_smoothing = 0.001,\n"),
+                      ("contact_faces = 'current'", "\n&tools\n", "\n&tools\n   contact_faces = 'current',\n")]
+
+
+def strain_rows(path):
+    """(s/h, ln(lambda), thickness log strain) of a strain file's rows
+    (columns 1, 5 and 8), non-finite rows left out."""
+    rows = []
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            cols = line.split()
+            vals = (float(cols[0]), float(cols[4]), float(cols[7]))
+            if all(math.isfinite(v) for v in vals):
+                rows.append(vals)
+    return rows
+
+
+def gen_stainless_early(ctx):
+    """docs/validation.md: the stainless-like sheet on bead C pulled 4.8h
+    (STAINLESS_EARLY_DECK), the program against its kept continuum run:
+    the restraining force at the end of the pull, and the stretch and
+    thickness strain at STAINLESS_EARLY_S (linear between each model's
+    rows)."""
+    res = run_many(ctx.program, [("stainless_early", STAINLESS_EARLY_DECK)], ctx.tmp, 1)
+    assert res
+    folder = os.path.join(ROOT, "docs", "validation", "continuum", "unseen_beadC_stainless_pull4.8h")
+    run = os.path.join(ctx.tmp, "stainless_early")
+    cont = strain_rows(os.path.join(folder, "strain_pull.dat"))
+    prog = strain_rows(os.path.join(run, "strain_pull.dat"))
+    cx, cy = pull_force_curve(os.path.join(folder, "pull.dat"))
+    px, py = pull_force_curve(os.path.join(run, "pull.dat"))
+    rows = [["restraining force at the end, N/mm", Num(py[-1], ".1f"), Num(cy[-1], ".1f"),
+             Num(py[-1] / cy[-1], ".3f")]]
+    for s in STAINLESS_EARLY_S:
+        for col, what in ((1, "ln(λ)"), (2, "thickness log strain")):
+            p = curve_at([r[0] for r in prog], [r[col] for r in prog], s)
+            c = curve_at([r[0] for r in cont], [r[col] for r in cont], s)
+            rows.append([f"{what} at s/h = {s:g}", Num(p, ".3f"), Num(c, ".3f"), Num(quotient(p, c), ".3f")])
+    header = ["at 4.8h of pull", "program", "continuum", "program / continuum"]
+    # the whole deck stopped at tearing, as it is and with the variants of
+    # STAINLESS_VARIANTS: the tearing point and the force at 4h of pull
+    base = read_doc(stopped_decks(ctx, "stainless_decks",
+                                  ["docs/validation/continuum/decks/unseen_beadC_stainless.nml"])[0])
+    jobs = []
+    for k, (_, was, now) in enumerate(STAINLESS_VARIANTS):
+        text = base
+        if was is not None:
+            if was not in text:
+                raise RuntimeError(f"unseen_beadC_stainless.nml: {was.strip()} expected")
+            text = text.replace(was, now, 1)
+        jobs.append((f"stainless_{k}", text))
+    vres = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    neck = real(read_summary(os.path.join(ROOT, "docs", "validation", "continuum", "unseen_beadC_stainless",
+                                          "continuum_summary.txt")), "max_restraining_force_at_delta_over_h")
+    fx, fy = pull_force_curve(os.path.join(ROOT, "docs", "validation", "continuum", "unseen_beadC_stainless",
+                                           "pull.dat"))
+    f4 = curve_at(fx, fy, 4.0)
+    vrows = []
+    for k, (what, _, _) in enumerate(STAINLESS_VARIANTS):
+        tear = real(vres[f"stainless_{k}"], "tearing_delta_over_h")
+        vx, vy = pull_force_curve(os.path.join(ctx.tmp, f"stainless_{k}", "pull.dat"))
+        n4 = curve_at(vx, vy, 4.0)
+        vrows.append([what or "the deck as it is", Num(tear, ".3f"),
+                      Num(quotient(tear, neck), ".3f"), Num(n4, ".1f"), Num(quotient(n4, f4), ".3f")])
+    vheader = ["unseen_beadC_stainless, stopped at tearing", "tearing Δ/h", "/ continuum's neck",
+               "N at 4h, N/mm", "/ continuum's"]
+
+    def text(raw):
+        return (markdown_table(header, ["---", "---:", "---:", "---:"], rows, raw) + "\n\n"
+                + markdown_table(vheader, ["---", "---:", "---:", "---:", "---:"], vrows, raw))
+    return text
+
+
 FRICTION_CASES = [(0.0, "cc_beadA_steel_mu0"), (0.05, "friction_beadA_mu0.05"),
                   (0.1, "cc_fig5a_beadA_steel"), (0.2, "friction_beadA_mu0.2")]
 FRICTION_ELEMENTS = [80, 160, 640]
@@ -1383,6 +1563,11 @@ GENERATORS = {
     "unseen_cases": ("docs/validation.md", gen_unseen_cases,
                      "the cases beyond the tables (docs/validation/continuum/decks/unseen_*) against their kept"
                      " continuum checks; convergence.sh -m and -s stopped at tearing"),
+    "tearing_flatness": ("docs/validation.md", gen_tearing_flatness,
+                         "the clamped cc_ decks, the double bead and the other continuum-checked necks stopped"
+                         " at tearing: how flat each model's restraining force is at the other's maximum"),
+    "stainless_early": ("docs/validation.md", gen_stainless_early,
+                        "the stainless-like sheet on bead C pulled 4.8h against its kept continuum run"),
     "tearing_step_sweep": ("docs/validation.md", gen_tearing_step_sweep,
                            "scripts/convergence.sh -s -f \"1 0.5 0.25 0.125\" on cc_fig5a stopped at tearing"),
     "strain_gradient_study": ("docs/theory.md", gen_strain_gradient_study,
