@@ -89,8 +89,10 @@ contains
    !>  k      [in]  penalty (force per reference length per unit penetration)
    !>  delta  [in]  smoothing length of the contact onset (0: sharp)
    !>  fric   [in]  the friction law (its regularization length eps of (4.3))
-   !>  face_stretch [in] the stretch of the sheet's face against this tool
-   !>               at the last converged state (pressure = force/stretch)
+   !>  face_log_stretch [in] the log stretch of the sheet's face against
+   !>               this tool at the last converged state (pressure =
+   !>               force/stretch; its exponential is taken only where a
+   !>               pressure needs it: most stations are out of contact)
    !>  p      [in]  current position of the station
    !>  chn    [in]  converged history column (layout: the ich_* constants)
    !>  ch1    [out] trial history column
@@ -104,16 +106,16 @@ contains
    !>  dfdd   [out] optional: d f / d d, the force's derivative with respect
    !>               to the penetration at fixed p (d offset = -d d)
    !>  dfndd  [out] optional: d fn / d d = k g'(d)
-   pure subroutine contact_station(tool, shift, k, delta, fric, face_stretch, p, chn, ch1, f, kf, &
+   pure subroutine contact_station(tool, shift, k, delta, fric, face_log_stretch, p, chn, ch1, f, kf, &
                                    fn, dfn, offset, dfdd, dfndd)
       type(tool_type), intent(in) :: tool
       class(friction_law_type), intent(in) :: fric
-      real(dp), intent(in) :: shift, k, delta, face_stretch, p(2), chn(:)
+      real(dp), intent(in) :: shift, k, delta, face_log_stretch, p(2), chn(:)
       real(dp), intent(out) :: ch1(:), f(2), kf(2, 2), fn, dfn(2)
       real(dp), intent(in), optional :: offset
       real(dp), intent(out), optional :: dfdd(2), dfndd
       real(dp) :: prel(2), d, n(2), t(2), curv, ds, sense, ut, dslip(2), tt, pn, dpn
-      real(dp) :: dut(2), dold, a, utm, trac_old, mu, pressure, dtt_dpn, dtt_dut, dut_dd
+      real(dp) :: dut(2), dold, a, utm, trac_old, mu, pressure, dtt_dpn, dtt_dut, dut_dd, face_stretch
       integer :: seg
       prel = [p(1), p(2) - shift]
       call tool_gap(tool, prel(1), prel(2), d, n, curv, t, seg, hint=nint(chn(ich_hint)))
@@ -133,9 +135,12 @@ contains
       ! (trapezoidal over the increment; the converged force from the
       ! converged pressure and face stretch)
       if (present(offset)) ch1(ich_offset) = offset
-      ch1(ich_offwork) = chn(ich_offwork) &
-                         + 0.5_dp*chn(ich_pressure)*face_stretch*(ch1(ich_offset) - chn(ich_offset))
+      ch1(ich_offwork) = chn(ich_offwork)
+      if (abs(chn(ich_pressure)) > 0.0_dp .and. abs(ch1(ich_offset) - chn(ich_offset)) > 0.0_dp) &
+         ch1(ich_offwork) = ch1(ich_offwork) &
+                            + 0.5_dp*chn(ich_pressure)*exp(face_log_stretch)*(ch1(ich_offset) - chn(ich_offset))
       if (d <= 0.0_dp) return
+      face_stretch = exp(face_log_stretch)
       ch1(ich_active) = 1.0_dp
       ! normal part: f = pn n with pn = k g(d), dd/dp = -n, dn/dp = curv (I - n n^T)
       if (d < delta) then

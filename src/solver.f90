@@ -210,8 +210,10 @@ contains
       ! the face offset (docs/theory.md §5.1) and what carries it into the tangent
       real(dp) :: offset(n_gauss, 2), doff(8, n_gauss, 2), dfdd(2, n_gauss, 2), dfndd, gk(4), gmk(4, 8), &
                   epsk, rhok, depsk(4), drhok(4), d2ek(4, 4), d2rk(4, 4), ode, odr
-      real(dp) :: nmg(2, 8, n_gauss), face_force(2, n_gauss), dface_force(8, 2, n_gauss)
-      integer :: ig, it, dofs(8)
+      real(dp) :: nmg(2, 8, n_gauss), nvg(4, n_gauss), face_force(2, n_gauss), dface_force(8, 2, n_gauss)
+      ! the element dofs of the displacement components v and w
+      integer, parameter :: dof_block(4, 2) = reshape([v_dofs, w_dofs], [4, 2])
+      integer :: ig, it, ia, ib, dofs(8)
       pnewdt = 1.0_dp
       fs = 0.0_dp
       ft = 0.0_dp
@@ -232,6 +234,7 @@ contains
             nm(1, v_dofs) = nv
             nm(2, w_dofs) = nv
             nmg(:, :, ig) = nm
+            nvg(:, ig) = nv
             p = matmul(nm, ul)
             p(1) = p(1) + m%x(e) + gauss_xi(ig)*le
             pg(:, ig) = p
@@ -252,7 +255,7 @@ contains
                ! the face against the tool: the top (tool 1) or the bottom
                ! (tool 2), its converged stretch exp(ln Lambda)
                call contact_station(m%tool(it), shifts(it), m%penalty, m%contact_smoothing, m%friction, &
-                                    exp(hn(merge(size(hn, 1), 1, it == 1), ih_strain, ig)), p, cn(:, ig, it), &
+                                    hn(merge(size(hn, 1), 1, it == 1), ih_strain, ig), p, cn(:, ig, it), &
                                     c1(:, ig, it), fc(:, ig, it), kc(:, :, ig, it), fn, dfn, &
                                     offset=offset(ig, it), dfdd=dfdd(:, ig, it), dfndd=dfndd)
                if (m%contact_section .and. fn > 0.0_dp) then
@@ -283,13 +286,30 @@ contains
                re = re - dv*matmul(fc(:, ig, it), nmg(:, :, ig))
                rf = rf + station_roundoff(nmg(:, :, ig), kc(:, :, ig, it), pg(:, ig), dv)
                ft(:, ig, it) = dv*fc(:, ig, it)
-               ke = ke - dv*matmul(transpose(nmg(:, :, ig)), matmul(kc(:, :, ig, it), nmg(:, :, ig)))
+               ! - dv N^T kc N, N = [nv on the v dofs; nv on the w dofs]:
+               ! block (a, b) is kc(a, b) nv nv^T
+               do ib = 1, 2
+                  do ia = 1, 2
+                     ke(dof_block(:, ia), dof_block(:, ib)) = ke(dof_block(:, ia), dof_block(:, ib)) &
+                        - dv*outer4(nvg(:, ig), kc(ia, ib, ig, it)*nvg(:, ig))
+                  end do
+               end do
                ! the force's dependence on the face offset: d = d(p) - offset(u_e)
                if (m%current_faces) ke = ke + dv*outer8(matmul(dfdd(:, ig, it), nmg(:, :, ig)), doff(:, ig, it))
             end do
          end do
       end if
    end subroutine assemble_element
+
+   !> OUTER4: the outer product a b^T of two 4-vectors.
+   pure function outer4(a, b) result(c)
+      real(dp), intent(in) :: a(4), b(4)
+      real(dp) :: c(4, 4)
+      integer :: j
+      do j = 1, 4
+         c(:, j) = a*b(j)
+      end do
+   end function outer4
 
    !> ELEMENT_ROUNDOFF: the round-off of an element's residual re(u_e),
    !> eps |K_e| (|u_e| + |x_e - x_c|) entry by entry: the change of re when
