@@ -36,6 +36,7 @@ import math
 import os
 import re
 import shlex
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -1190,6 +1191,79 @@ def gen_default_path_cost(ctx):
     return text
 
 
+# the decks of input/ that other_decks_cost times: all but the clamped
+# continuum-check decks of COST_DECKS and the double bead (the default
+# path's own table) and the decks COST_BASE_COMMIT does not read
+OTHER_COST_RUNS = 7
+
+
+def interleaved_times(runs, jobs, outdir):
+    """Wall seconds of each (binary, deck) job of JOBS run RUNS times, one
+    thread, the jobs taking turns run by run (so that all see the same
+    load); {job index: [seconds]} and each job's last exit status."""
+    times = {k: [] for k in range(len(jobs))}
+    status = {}
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    for _ in range(runs):
+        for k, (binary, deck) in enumerate(jobs):
+            start = time.perf_counter()
+            status[k] = subprocess.call([binary, deck, "--output", os.path.join(outdir, f"job{k}")], cwd=ROOT,
+                                        env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            times[k].append(time.perf_counter() - start)
+    return times, status
+
+
+def gen_other_decks_cost(ctx):
+    """docs/performance.md: every deck of input/ but the clamped ones of
+    COST_DECKS and the double bead, one thread, this version against
+    COST_BASE_COMMIT's binary (built as default_path_cost builds it), the
+    two taking turns run by run, OTHER_COST_RUNS runs each: medians, their
+    ratio, assemblies and status of each; a deck the old binary does not
+    read (its variables are newer) is left out, and said so."""
+    base = os.path.join(ctx.tmp, "cost_base")
+    base_bin = os.path.join(base, "bin", "drawbead")
+    if not os.path.exists(base_bin):
+        os.makedirs(base, exist_ok=True)
+        archive = subprocess.run(["git", "archive", COST_BASE_COMMIT], cwd=ROOT, stdout=subprocess.PIPE,
+                                 check=True)
+        subprocess.run(["tar", "-x", "-C", base], input=archive.stdout, check=True)
+        subprocess.run(["make", "-s", "all"], cwd=base, stdout=subprocess.DEVNULL, check=True)
+    skip = set(COST_DECKS) | {"input/double_bead.nml"}
+    decks = sorted(os.path.join("input", f) for f in os.listdir(os.path.join(ROOT, "input"))
+                   if f.endswith(".nml") and os.path.join("input", f) not in skip)
+    with open("/proc/loadavg", encoding="utf-8") as f:
+        load_before = " ".join(f.read().split()[:3])
+    rows, unread = [], []
+    odir = os.path.join(ctx.tmp, "other_cost")
+    os.makedirs(odir, exist_ok=True)
+    for deck in decks:
+        name = os.path.basename(deck)[:-4]
+        times, status = interleaved_times(OTHER_COST_RUNS, [(base_bin, deck), (ctx.program, deck)],
+                                          os.path.join(odir, name))
+        if status[0] != 0 and not os.path.exists(os.path.join(odir, name, "job0", "summary.txt")):
+            unread.append(name)
+            continue
+        sb = read_summary(os.path.join(odir, name, "job0", "summary.txt"))
+        sn = read_summary(os.path.join(odir, name, "job1", "summary.txt"))
+        mb, mn = statistics.median(times[0]), statistics.median(times[1])
+        rows.append([name, Num(mb, ".3f"), sb.get("assemblies", "none"), sb.get("status", "none"),
+                     Num(mn, ".3f"), sn.get("assemblies", "none"), sn.get("status", "none"), Num(mn / mb, ".2f")])
+    with open("/proc/loadavg", encoding="utf-8") as f:
+        load_after = " ".join(f.read().split()[:3])
+    host = (f"host: load average {load_before} before the runs, {load_after} after them (their own included),"
+            f" {time.strftime('%Y-%m-%d %H:%M')}")
+    header = ["deck", f"{COST_BASE_COMMIT}, s", "assemblies", "status", "this version, s", "assemblies", "status",
+              "time ratio"]
+
+    def text(raw):
+        lines = [f"<!-- {host} -->", "", markdown_table(header, ["---"] + ["---:"] * 2 + ["---"] + ["---:"] * 2
+                                                          + ["---", "---:"], rows, raw)]
+        if unread:
+            lines += ["", f"Not read by {COST_BASE_COMMIT} (newer variables): " + ", ".join(unread) + "."]
+        return "\n".join(lines)
+    return text
+
+
 def gen_bead_cards(ctx):
     """docs/user-guide.md: the worked example of an equivalent bead: a
     lock_depth sweep of fig9c, scripts/bead_curves.sh on it, its
@@ -1589,6 +1663,9 @@ GENERATORS = {
     "default_path_cost": ("docs/performance.md", gen_default_path_cost,
                           f"scripts/bench.sh on the clamped cc_ decks stopped at tearing and double_bead,"
                           f" this version against {COST_BASE_COMMIT}'s uniform run (not checkable)"),
+    "other_decks_cost": ("docs/performance.md", gen_other_decks_cost,
+                         f"every other deck of input/, one thread, this version against {COST_BASE_COMMIT}'s"
+                         " binary, interleaved runs (not checkable)"),
     "laws_cost": ("docs/performance.md", gen_laws_cost,
                   "scripts/bench.sh on cc_fig5a with the J2 law, combined hardening with and without"
                   " back stresses, and mu(p) (not checkable)"),
@@ -1618,7 +1695,7 @@ GENERATORS = {
                          "scripts/sweep.sh over lock_depth and scripts/bead_curves.sh on the free bead A with three laws"),
     "bench": ("docs/performance.md", gen_bench, "scripts/bench.sh --markdown -n 5: 1 and 2 threads, scaling (not checkable)"),
 }
-UNCHECKABLE = {"bench", "contact_cost", "neck_cost", "laws_cost", "default_path_cost"}
+UNCHECKABLE = {"bench", "contact_cost", "neck_cost", "laws_cost", "default_path_cost", "other_decks_cost"}
 
 
 # ---------------------------------------------------------------------------
