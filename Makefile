@@ -37,9 +37,11 @@ PYTHON ?= python3
 # -flto inlines across modules (one module per concern puts the hardening
 # law, the distance helpers and their callers in different files: without
 # it fig9d took 4% longer).  -O3: the element's and the section's small
-# fixed-size loops unrolled and inlined; the paper decks 1-8% faster on one
-# thread than with -O2 (docs/performance.md, the cost against 3df1877),
-# the regression references unchanged within 1e-10.
+# fixed-size loops unrolled and inlined; measured on one thread against
+# the same source at -O2 (interleaved runs, fastest user time): fig5a,
+# fig6 and fig7d 5-7% faster, the J2 law's per assembly on the laws' cost
+# deck too, the combined law's unchanged; the regression decks within
+# their tolerance (1e-6; 3e-10 at most, as at -O2).
 #
 # OPENMP_FLAGS: the assembly runs its elements on OMP_NUM_THREADS threads
 # (one if it is unset; the results do not depend on the number:

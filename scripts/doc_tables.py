@@ -479,7 +479,11 @@ def curve_at(xs, ys, x):
 def plateau(xs, ys, share):
     """The span of delta/h around the largest N over which N stays within
     share of it (the rows on either side of the largest, the ends where it
-    leaves interpolated linearly): (first, last)."""
+    leaves interpolated linearly), as text "first-last"; an end the curve
+    does not leave before its first or last row is that row's, marked
+    "(end)"."""
+    if not ys:
+        raise RuntimeError("plateau: a force curve with no rows")
     k = max(range(len(ys)), key=lambda i: ys[i])
     level = ys[k] * (1.0 - share)
     ends = []
@@ -489,10 +493,10 @@ def plateau(xs, ys, share):
             i += step
         j = i + step
         if 0 <= j < len(ys) and ys[j] != ys[i]:
-            ends.append(xs[i] + (level - ys[i]) / (ys[j] - ys[i]) * (xs[j] - xs[i]))
+            ends.append("%.2f" % (xs[i] + (level - ys[i]) / (ys[j] - ys[i]) * (xs[j] - xs[i])))
         else:
-            ends.append(xs[i])
-    return ends[0], ends[1]
+            ends.append("%.2f (end)" % xs[i])
+    return ends[0] + "-" + ends[1]
 
 
 # the share of the largest restraining force within which tearing_flatness
@@ -523,11 +527,11 @@ def gen_tearing_flatness(ctx):
         px, py = pull_force_curve(os.path.join(ctx.tmp, "flatness_" + base, "pull.dat"))
         c_at = curve_at(cx, cy, tear) if tear is not None else None
         p_at = curve_at(px, py, neck) if neck is not None else None
-        c0, c1 = plateau(cx, cy, FLATNESS_SHARE)
-        p0, p1 = plateau(px, py, FLATNESS_SHARE)
+        if not cy or not py:
+            raise RuntimeError(f"{base}: no pull rows (program or continuum)")
         rows.append([base, Num(neck, ".3f"), Num(tear, ".3f"), Num(quotient(tear, neck), ".3f"),
                      Num(quotient(c_at, max(cy)), ".4f"), Num(quotient(p_at, max(py)), ".4f"),
-                     "%.2f-%.2f" % (c0, c1), "%.2f-%.2f" % (p0, p1),
+                     plateau(cx, cy, FLATNESS_SHARE), plateau(px, py, FLATNESS_SHARE),
                      Num(quotient(max(py), max(cy)), ".4f")])
     pct = "%g%%" % (100.0 * FLATNESS_SHARE)
     header = ["deck (stopped at tearing, 80 elements)", "continuum's neck Δ/h", "tearing Δ/h",
@@ -587,8 +591,8 @@ def gen_stainless_early(ctx):
     prog = strain_rows(os.path.join(run, "strain_pull.dat"))
     cx, cy = pull_force_curve(os.path.join(folder, "pull.dat"))
     px, py = pull_force_curve(os.path.join(run, "pull.dat"))
-    rows = [["restraining force at the end, N/mm", Num(py[-1], ".1f"), Num(cy[-1], ".1f"),
-             Num(py[-1] / cy[-1], ".3f")]]
+    p48, c48 = curve_at(px, py, 4.8), curve_at(cx, cy, 4.8)
+    rows = [["restraining force, N/mm", Num(p48, ".1f"), Num(c48, ".1f"), Num(quotient(p48, c48), ".3f")]]
     for s in STAINLESS_EARLY_S:
         for col, what in ((1, "ln(λ)"), (2, "thickness log strain")):
             p = curve_at([r[0] for r in prog], [r[col] for r in prog], s)
@@ -1238,11 +1242,19 @@ def gen_other_decks_cost(ctx):
     os.makedirs(odir, exist_ok=True)
     for deck in decks:
         name = os.path.basename(deck)[:-4]
-        times, status = interleaved_times(OTHER_COST_RUNS, [(base_bin, deck), (ctx.program, deck)],
-                                          os.path.join(odir, name))
-        if status[0] != 0 and not os.path.exists(os.path.join(odir, name, "job0", "summary.txt")):
+        # a deck the old binary does not read writes no summary: one probe
+        # run, not the interleaved seven
+        _, probe = run_deck(base_bin, deck, os.path.join(odir, name), "probe", True)
+        if not os.path.exists(os.path.join(odir, name, "probe", "summary.txt")):
             unread.append(name)
             continue
+        times, status = interleaved_times(OTHER_COST_RUNS, [(base_bin, deck), (ctx.program, deck)],
+                                          os.path.join(odir, name))
+        # (a run that stops early with a non-zero status keeps its summary:
+        # its row says so in its status column)
+        for k, who in ((0, COST_BASE_COMMIT), (1, "this version")):
+            if not os.path.exists(os.path.join(odir, name, f"job{k}", "summary.txt")):
+                raise RuntimeError(f"{deck}: {who} wrote no summary.txt (exit status {status[k]})")
         sb = read_summary(os.path.join(odir, name, "job0", "summary.txt"))
         sn = read_summary(os.path.join(odir, name, "job1", "summary.txt"))
         mb, mn = statistics.median(times[0]), statistics.median(times[1])

@@ -115,6 +115,13 @@ contains
       ke = 0.0_dp
       gp = 0.0_dp
       npt = size(wz)
+      ! (set in the loop where gc > 0, the only place they are read; given
+      ! values here so that the optimizer sees no read before a write)
+      gam = 0.0_dp
+      bgam = 0.0_dp
+      cf = 1.0_dp
+      dcf = 0.0_dp
+      d2cf = 0.0_dp
       do ig = 1, n_gauss
          call element_gradients(gauss_xi(ig), le, ul, g, gm)
          call strain_measures(g, eps, rho, deps, drho, d2eps, d2rho)

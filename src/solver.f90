@@ -253,7 +253,8 @@ contains
             end if
             do it = 1, 2
                ! the face against the tool: the top (tool 1) or the bottom
-               ! (tool 2), its converged stretch exp(ln Lambda)
+               ! (tool 2), its converged log stretch ln Lambda (contact_station
+               ! takes its exponential where a pressure needs it)
                call contact_station(m%tool(it), shifts(it), m%penalty, m%contact_smoothing, m%friction, &
                                     hn(merge(size(hn, 1), 1, it == 1), ih_strain, ig), p, cn(:, ig, it), &
                                     c1(:, ig, it), fc(:, ig, it), kc(:, :, ig, it), fn, dfn, &
