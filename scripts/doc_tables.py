@@ -1198,7 +1198,7 @@ def gen_default_path_cost(ctx):
 # the decks of input/ that other_decks_cost times: all but the clamped
 # continuum-check decks of COST_DECKS and the double bead (the default
 # path's own table) and the decks COST_BASE_COMMIT does not read
-OTHER_COST_RUNS = 7
+OTHER_COST_RUNS = 11
 
 
 def interleaved_times(runs, jobs, outdir):
@@ -1244,7 +1244,8 @@ def gen_other_decks_cost(ctx):
         name = os.path.basename(deck)[:-4]
         # a deck the old binary does not read writes no summary: one probe
         # run, not the interleaved seven
-        _, probe = run_deck(base_bin, deck, os.path.join(odir, name), "probe", True)
+        os.makedirs(os.path.join(odir, name), exist_ok=True)
+        run_deck(base_bin, deck, os.path.join(odir, name), "probe", True)
         if not os.path.exists(os.path.join(odir, name, "probe", "summary.txt")):
             unread.append(name)
             continue
