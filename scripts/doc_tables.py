@@ -451,29 +451,10 @@ def gen_strain_gradient_study(ctx):
 
 def pull_force_curve(path):
     """(delta/h, N) of a pull.dat (the program's or the continuum's, columns
-    1 and 3), rows with a non-finite N left out."""
-    xs, ys = [], []
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            if line.startswith("#") or not line.strip():
-                continue
-            cols = line.split()
-            x, y = float(cols[0]), float(cols[2])
-            if math.isfinite(x) and math.isfinite(y):
-                xs.append(x)
-                ys.append(y)
-    return xs, ys
-
-
-def curve_at(xs, ys, x):
-    """ys at x, linear between the rows around it; None outside the rows."""
-    for i in range(1, len(xs)):
-        if xs[i - 1] <= x <= xs[i]:
-            if xs[i] == xs[i - 1]:
-                return ys[i]
-            w = (x - xs[i - 1]) / (xs[i] - xs[i - 1])
-            return ys[i - 1] + w * (ys[i] - ys[i - 1])
-    return None
+    1 and 3; continuum_results' reader), rows with a non-finite value there
+    left out."""
+    rows = [r for r in continuum_results.read_rows(path) if math.isfinite(r[0]) and math.isfinite(r[2])]
+    return [r[0] for r in rows], [r[2] for r in rows]
 
 
 def plateau(xs, ys, share):
@@ -525,8 +506,8 @@ def gen_tearing_flatness(ctx):
         tear = real(res["flatness_" + base], "tearing_delta_over_h")
         cx, cy = pull_force_curve(os.path.join(folder, "pull.dat"))
         px, py = pull_force_curve(os.path.join(ctx.tmp, "flatness_" + base, "pull.dat"))
-        c_at = curve_at(cx, cy, tear) if tear is not None else None
-        p_at = curve_at(px, py, neck) if neck is not None else None
+        c_at = continuum_results.interp(cx, cy, tear) if tear is not None else None
+        p_at = continuum_results.interp(px, py, neck) if neck is not None else None
         if not cy or not py:
             raise RuntimeError(f"{base}: no pull rows (program or continuum)")
         rows.append([base, Num(neck, ".3f"), Num(tear, ".3f"), Num(quotient(tear, neck), ".3f"),
@@ -564,17 +545,10 @@ STAINLESS_VARIANTS = [(None, None, None),
 
 def strain_rows(path):
     """(s/h, ln(lambda), thickness log strain) of a strain file's rows
-    (columns 1, 5 and 8), non-finite rows left out."""
-    rows = []
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            if line.startswith("#") or not line.strip():
-                continue
-            cols = line.split()
-            vals = (float(cols[0]), float(cols[4]), float(cols[7]))
-            if all(math.isfinite(v) for v in vals):
-                rows.append(vals)
-    return rows
+    (columns 1, 5 and 8; continuum_results' reader), non-finite rows left
+    out."""
+    return [(r[0], r[4], r[7]) for r in continuum_results.read_rows(path)
+            if all(math.isfinite(v) for v in (r[0], r[4], r[7]))]
 
 
 def gen_stainless_early(ctx):
@@ -591,12 +565,12 @@ def gen_stainless_early(ctx):
     prog = strain_rows(os.path.join(run, "strain_pull.dat"))
     cx, cy = pull_force_curve(os.path.join(folder, "pull.dat"))
     px, py = pull_force_curve(os.path.join(run, "pull.dat"))
-    p48, c48 = curve_at(px, py, 4.8), curve_at(cx, cy, 4.8)
+    p48, c48 = continuum_results.interp(px, py, 4.8), continuum_results.interp(cx, cy, 4.8)
     rows = [["restraining force, N/mm", Num(p48, ".1f"), Num(c48, ".1f"), Num(quotient(p48, c48), ".3f")]]
     for s in STAINLESS_EARLY_S:
         for col, what in ((1, "ln(λ)"), (2, "thickness log strain")):
-            p = curve_at([r[0] for r in prog], [r[col] for r in prog], s)
-            c = curve_at([r[0] for r in cont], [r[col] for r in cont], s)
+            p = continuum_results.interp([r[0] for r in prog], [r[col] for r in prog], s)
+            c = continuum_results.interp([r[0] for r in cont], [r[col] for r in cont], s)
             rows.append([f"{what} at s/h = {s:g}", Num(p, ".3f"), Num(c, ".3f"), Num(quotient(p, c), ".3f")])
     header = ["at 4.8h of pull", "program", "continuum", "program / continuum"]
     # the whole deck stopped at tearing, as it is and with the variants of
@@ -616,12 +590,12 @@ def gen_stainless_early(ctx):
                                           "continuum_summary.txt")), "max_restraining_force_at_delta_over_h")
     fx, fy = pull_force_curve(os.path.join(ROOT, "docs", "validation", "continuum", "unseen_beadC_stainless",
                                            "pull.dat"))
-    f4 = curve_at(fx, fy, 4.0)
+    f4 = continuum_results.interp(fx, fy, 4.0)
     vrows = []
     for k, (what, _, _) in enumerate(STAINLESS_VARIANTS):
         tear = real(vres[f"stainless_{k}"], "tearing_delta_over_h")
         vx, vy = pull_force_curve(os.path.join(ctx.tmp, f"stainless_{k}", "pull.dat"))
-        n4 = curve_at(vx, vy, 4.0)
+        n4 = continuum_results.interp(vx, vy, 4.0)
         vrows.append([what or "the deck as it is", Num(tear, ".3f"),
                       Num(quotient(tear, neck), ".3f"), Num(n4, ".1f"), Num(quotient(n4, f4), ".3f")])
     vheader = ["unseen_beadC_stainless, stopped at tearing", "tearing Δ/h", "/ continuum's neck",

@@ -135,12 +135,13 @@ contains
       ! (trapezoidal over the increment; the converged force from the
       ! converged pressure and face stretch)
       if (present(offset)) ch1(ich_offset) = offset
-      ch1(ich_offwork) = chn(ich_offwork)
-      if (abs(chn(ich_pressure)) > 0.0_dp .and. abs(ch1(ich_offset) - chn(ich_offset)) > 0.0_dp) &
-         ch1(ich_offwork) = ch1(ich_offwork) &
-                            + 0.5_dp*chn(ich_pressure)*exp(face_log_stretch)*(ch1(ich_offset) - chn(ich_offset))
+      ! (the stretch enters only with a pressure, converged or new: most
+      ! stations are out of contact and skip the exponential)
+      face_stretch = 1.0_dp
+      if (abs(chn(ich_pressure)) > 0.0_dp .or. d > 0.0_dp) face_stretch = exp(face_log_stretch)
+      ch1(ich_offwork) = chn(ich_offwork) &
+                         + 0.5_dp*chn(ich_pressure)*face_stretch*(ch1(ich_offset) - chn(ich_offset))
       if (d <= 0.0_dp) return
-      face_stretch = exp(face_log_stretch)
       ch1(ich_active) = 1.0_dp
       ! normal part: f = pn n with pn = k g(d), dd/dp = -n, dn/dp = curv (I - n n^T)
       if (d < delta) then

@@ -210,7 +210,7 @@ contains
       ! the face offset (docs/theory.md §5.1) and what carries it into the tangent
       real(dp) :: offset(n_gauss, 2), doff(8, n_gauss, 2), dfdd(2, n_gauss, 2), dfndd, gk(4), gmk(4, 8), &
                   epsk, rhok, depsk(4), drhok(4), d2ek(4, 4), d2rk(4, 4), ode, odr
-      real(dp) :: nmg(2, 8, n_gauss), nvg(4, n_gauss), face_force(2, n_gauss), dface_force(8, 2, n_gauss)
+      real(dp) :: nmg(2, 8, n_gauss), face_force(2, n_gauss), dface_force(8, 2, n_gauss)
       ! the element dofs of the displacement components v and w
       integer, parameter :: dof_block(4, 2) = reshape([v_dofs, w_dofs], [4, 2])
       integer :: ig, it, ia, ib, dofs(8)
@@ -234,7 +234,6 @@ contains
             nm(1, v_dofs) = nv
             nm(2, w_dofs) = nv
             nmg(:, :, ig) = nm
-            nvg(:, ig) = nv
             p = matmul(nm, ul)
             p(1) = p(1) + m%x(e) + gauss_xi(ig)*le
             pg(:, ig) = p
@@ -289,10 +288,11 @@ contains
                ft(:, ig, it) = dv*fc(:, ig, it)
                ! - dv N^T kc N, N = [nv on the v dofs; nv on the w dofs]:
                ! block (a, b) is kc(a, b) nv nv^T
+               nv = nmg(1, v_dofs, ig)
                do ib = 1, 2
                   do ia = 1, 2
                      ke(dof_block(:, ia), dof_block(:, ib)) = ke(dof_block(:, ia), dof_block(:, ib)) &
-                        - dv*outer4(nvg(:, ig), kc(ia, ib, ig, it)*nvg(:, ig))
+                        - dv*outer4(nv, kc(ia, ib, ig, it)*nv)
                   end do
                end do
                ! the force's dependence on the face offset: d = d(p) - offset(u_e)
