@@ -1079,6 +1079,26 @@ COST_DECKS = NECK_DECKS + ["input/cc_beadA_aluminium.nml", "input/cc_beadB_alumi
                            "input/cc_beadB_hss.nml", "input/cc_beadA_hss.nml"]
 
 
+def cost_base_binary(ctx):
+    """The binary of commit COST_BASE_COMMIT, built once per run of this
+    script from the repository's history (git archive, make) in ctx.tmp."""
+    base = os.path.join(ctx.tmp, "cost_base")
+    base_bin = os.path.join(base, "bin", "drawbead")
+    if not os.path.exists(base_bin):
+        os.makedirs(base, exist_ok=True)
+        archive = subprocess.run(["git", "archive", COST_BASE_COMMIT], cwd=ROOT, stdout=subprocess.PIPE,
+                                 check=True)
+        subprocess.run(["tar", "-x", "-C", base], input=archive.stdout, check=True)
+        subprocess.run(["make", "-s", "all"], cwd=base, stdout=subprocess.DEVNULL, check=True)
+    return base_bin
+
+
+def load_average():
+    """The machine's 1, 5 and 15 minute load averages, as text."""
+    with open("/proc/loadavg", encoding="utf-8") as f:
+        return " ".join(f.read().split()[:3])
+
+
 def bench_row(ctx, binary, deck, threads, runs, keep):
     """(median wall s, assemblies, status) of DECK by scripts/bench.sh --bin
     BINARY with THREADS threads and RUNS runs, the runs kept under KEEP
@@ -1125,18 +1145,12 @@ def gen_default_path_cost(ctx):
     that both see the same load); medians, assemblies and their ratio; and
     the default path's Newton iterations by phase (phase_iterations) and
     in its splits' re-equilibration (the rest of summary.txt's)."""
-    base = os.path.join(ctx.tmp, "cost_base")
-    os.makedirs(base, exist_ok=True)
-    archive = subprocess.run(["git", "archive", COST_BASE_COMMIT], cwd=ROOT, stdout=subprocess.PIPE, check=True)
-    subprocess.run(["tar", "-x", "-C", base], input=archive.stdout, check=True)
-    subprocess.run(["make", "-s", "all"], cwd=base, stdout=subprocess.DEVNULL, check=True)
-    base_bin = os.path.join(base, "bin", "drawbead")
+    base_bin = cost_base_binary(ctx)
     decks = stopped_decks(ctx, "default_path_cost_decks", COST_DECKS) + ["input/double_bead.nml"]
     probe = script_output(ctx, ["scripts/bench.sh", "--bin", ctx.program, "-n", "1", "--threads", "1",
                                 "--no-scaling", "input/fig7b_beadA_steel_mu0.nml"])
     machine = next(ln[2:] for ln in probe.splitlines() if ln.startswith("# host:")).split(", load average")[0]
-    with open("/proc/loadavg", encoding="utf-8") as f:
-        load_before = " ".join(f.read().split()[:3])
+    load_before = load_average()
     rows, phases = [], []
     keep_base, keep_now = os.path.join(ctx.tmp, "cost_runs_base"), os.path.join(ctx.tmp, "cost_runs_now")
     for threads in (2, 1):
@@ -1157,8 +1171,7 @@ def gen_default_path_cost(ctx):
     pheader = ["deck", "locking", "pulling to the tearing point", "pulling past it (to its confirmation)",
                "in no row (the splits' re-equilibration)", "in all"]
 
-    with open("/proc/loadavg", encoding="utf-8") as f:
-        load_after = " ".join(f.read().split()[:3])
+    load_after = load_average()
     host = (f"{machine}, load average {load_before} before the runs, {load_after} after them"
             f" (their own included), {time.strftime('%Y-%m-%d %H:%M')}")
 
@@ -1198,19 +1211,11 @@ def gen_other_decks_cost(ctx):
     two taking turns run by run, OTHER_COST_RUNS runs each: medians, their
     ratio, assemblies and status of each; a deck the old binary does not
     read (its variables are newer) is left out, and said so."""
-    base = os.path.join(ctx.tmp, "cost_base")
-    base_bin = os.path.join(base, "bin", "drawbead")
-    if not os.path.exists(base_bin):
-        os.makedirs(base, exist_ok=True)
-        archive = subprocess.run(["git", "archive", COST_BASE_COMMIT], cwd=ROOT, stdout=subprocess.PIPE,
-                                 check=True)
-        subprocess.run(["tar", "-x", "-C", base], input=archive.stdout, check=True)
-        subprocess.run(["make", "-s", "all"], cwd=base, stdout=subprocess.DEVNULL, check=True)
+    base_bin = cost_base_binary(ctx)
     skip = set(COST_DECKS) | {"input/double_bead.nml"}
     decks = sorted(os.path.join("input", f) for f in os.listdir(os.path.join(ROOT, "input"))
                    if f.endswith(".nml") and os.path.join("input", f) not in skip)
-    with open("/proc/loadavg", encoding="utf-8") as f:
-        load_before = " ".join(f.read().split()[:3])
+    load_before = load_average()
     rows, unread = [], []
     odir = os.path.join(ctx.tmp, "other_cost")
     os.makedirs(odir, exist_ok=True)
@@ -1235,8 +1240,7 @@ def gen_other_decks_cost(ctx):
         mb, mn = statistics.median(times[0]), statistics.median(times[1])
         rows.append([name, Num(mb, ".3f"), sb.get("assemblies", "none"), sb.get("status", "none"),
                      Num(mn, ".3f"), sn.get("assemblies", "none"), sn.get("status", "none"), Num(mn / mb, ".2f")])
-    with open("/proc/loadavg", encoding="utf-8") as f:
-        load_after = " ".join(f.read().split()[:3])
+    load_after = load_average()
     host = (f"host: load average {load_before} before the runs, {load_after} after them (their own included),"
             f" {time.strftime('%Y-%m-%d %H:%M')}")
     header = ["deck", f"{COST_BASE_COMMIT}, s", "assemblies", "status", "this version, s", "assemblies", "status",
