@@ -540,7 +540,7 @@ STAINLESS_VARIANTS = [(None, None, None),
                       ("penalty = 0.1", "\n&tools\n", "\n&tools\n   penalty = 0.1,\n"),
                       ("penalty = 0.37, contact_smoothing = 0.001", "\n&tools\n",
                        "\n&tools\n   penalty = 0.37, contact_smoothing = 0.001,\n"),
-                      ("contact_faces = 'current'", "\n&tools\n", "\n&tools\n   contact_faces = 'current',\n")]
+                      ("contact_faces = 'reference'", "\n&tools\n", "\n&tools\n   contact_faces = 'reference',\n")]
 
 
 def strain_rows(path):
@@ -968,17 +968,17 @@ FACES_PULLS = [0.5, 1.0, 2.0]
 
 
 def faces_jobs(decks, prefix):
-    """run_many's jobs for each input/<deck>.nml of DECKS as shipped (name
-    PREFIX_<deck>_reference) and with &tools contact_faces = 'current'
-    (PREFIX_<deck>_current)."""
+    """run_many's jobs for each input/<deck>.nml of DECKS as shipped, the
+    tools on the current faces (name PREFIX_<deck>_current), and with
+    &tools contact_faces = 'reference' (PREFIX_<deck>_reference)."""
     jobs = []
     for deck in decks:
         text = read_doc(f"input/{deck}.nml")
         if "\n&tools\n" not in text:
             raise RuntimeError(f"input/{deck}.nml: no &tools line of its own")
-        jobs.append((f"{prefix}_{deck}_reference", f"input/{deck}.nml"))
-        jobs.append((f"{prefix}_{deck}_current",
-                     text.replace("\n&tools\n", "\n&tools\n   contact_faces = 'current'\n", 1)))
+        jobs.append((f"{prefix}_{deck}_reference",
+                     text.replace("\n&tools\n", "\n&tools\n   contact_faces = 'reference'\n", 1)))
+        jobs.append((f"{prefix}_{deck}_current", f"input/{deck}.nml"))
     return jobs
 
 
@@ -992,8 +992,8 @@ def pull_value_at(path, column, delta):
 
 def gen_contact_faces(ctx):
     """docs/validation.md: the continuum-check decks FACES_DECKS as shipped
-    (the tools on the reference faces) and with &tools contact_faces =
-    'current' (theory 5.1): restraining force and lift over the kept
+    (the tools on the current faces, theory 5.1) and with &tools
+    contact_faces = 'reference': restraining force and lift over the kept
     continuum's at FACES_PULLS h of pull (pull.dat columns 3 and 8, linear
     in the pull), the tearing point against the continuum's neck (its
     largest restraining force, where it necks), and the energy balance."""
@@ -1031,7 +1031,8 @@ LONG_PULLS = [2.0, 8.0, 16.0, 24.0, 32.0]
 
 def gen_long_pull(ctx):
     """docs/validation.md: the exit-state decks (free edges pulled 36h and
-    48h) as shipped and with &tools contact_faces = 'current': restraining
+    48h) as shipped (the current faces) and with &tools contact_faces =
+    'reference': restraining
     force and lift over the kept default-mesh continuum's
     (docs/validation/continuum/<deck>/pull.dat) at LONG_PULLS h, linear in
     the pull."""
@@ -1315,12 +1316,12 @@ LIFT_TRACE_CASES = [("cc_fig5a_beadA_steel", LIFT_TRACE_OPTIONS), ("cc_fig6_bead
                     # the free edge: its lift at full lock is the binder faces' squeeze,
                     # which the contact stiffness sets
                     ("cc_fig9c_beadA_steel_free", ["--at", "0.5,1,2", "--offset", "0.05", "--also", "normal_stress=none",
-                                                   "--also", "contact_faces=current", "--also", "penalty=0.01",
+                                                   "--also", "contact_faces=reference", "--also", "penalty=0.01",
                                                    "--also", "penalty=0.2"]),
                     # ... against its continuum with the contact slope 1e4 (kept apart)
                     ("cc_fig9c_beadA_steel_free", ["--at", "0.5,1,2"], "lift_trace_slope1e4"),
                     # ... and with the binder gap that leaves it unsqueezed
-                    ("cc_fig9c_beadA_steel_free_gap", ["--at", "0.5,1,2", "--also", "contact_faces=current",
+                    ("cc_fig9c_beadA_steel_free_gap", ["--at", "0.5,1,2", "--also", "contact_faces=reference",
                                                        "--also", "n_elements=320", "--also", "penalty=0.2"])]
 
 

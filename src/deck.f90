@@ -144,7 +144,7 @@ module deck
       real(dp) :: friction_mu_max = 1.0_dp            ! 'power': upper bound of mu
       real(dp) :: friction_eps = 0.0333_dp            ! eps of (4.3), units of h
       real(dp) :: contact_smoothing = 0.0_dp          ! penalty onset smoothed over this penetration, units of h (0: sharp, as the paper)
-      character(len=16) :: contact_faces = 'reference' ! 'reference' (h/2 from the centreline, the paper) | 'current' (theory §5.1)
+      character(len=16) :: contact_faces = ''          ! 'current' (theory §5.1; default with 'contact') | 'reference' (h/2 from the centreline, the paper; default with 'none')
       ! &loading
       real(dp) :: lock_depth = unset                  ! h1 + r1 with bead = 'rectangular', 0 with 'none', required with 'profile'
       real(dp) :: pull_distance = unset               ! 10 h
@@ -172,7 +172,8 @@ contains
    !> the tools r1 ... h2 of the paper's bead A (bead_a_over_h), pull_distance 10 h, min_increment 1e-6 h, max_increment
    !> 0.2 h, initial_increment 0.05 h (kept within the min/max increments),
    !> lock_depth h1 + r1 (full lock) with a rectangular bead, 0 without one;
-   !> with a profile bead it must be given.
+   !> with a profile bead it must be given; contact_faces 'current' with
+   !> normal_stress = 'contact', 'reference' with 'none'.
    !>
    !> d  [in,out] the deck as read.
    subroutine resolve_defaults(d)
@@ -186,6 +187,13 @@ contains
 
       if (is_unset(d%length)) d%length = 50.0_dp*h
       if (is_unset(d%strain_gradient)) d%strain_gradient = merge(1.0_dp, 0.0_dp, d%normal_stress == 'contact')
+      ! the tools on the sheet's current faces with the contact section, on
+      ! faces h/2 from the centreline (the paper's model) without it
+      ! (docs/theory.md §5.1, §12.7)
+      if (len_trim(d%contact_faces) == 0) then
+         d%contact_faces = 'reference'
+         if (d%normal_stress == 'contact') d%contact_faces = 'current'
+      end if
       if (is_unset(d%r1)) d%r1 = bead_a_over_h(1)*h
       if (is_unset(d%r2)) d%r2 = bead_a_over_h(2)*h
       if (is_unset(d%b1)) d%b1 = bead_a_over_h(3)*h

@@ -38,20 +38,27 @@ module setup
    implicit none
    private
    public :: setup_run, material_constants, material_of_deck, smallest_radius, gradient_coefficient, &
-             shell_gradient_factor
+             reference_faces_gradient_factor
 
-   !> The strain-gradient coefficient of the sheet over the plane-strain
-   !> bar's (docs/theory.md §12.7): a neck that forms against a tool face
-   !> holding the sheet's inner face is half of the neck of a strip 2h
+   !> The strain-gradient coefficient over the plane-strain bar's with the
+   !> tools on the faces h/2 from the centreline (contact_faces =
+   !> 'reference'; docs/theory.md §12.7): a neck that forms against a tool
+   !> face holding the sheet's inner face is half of the neck of a strip 2h
    !> thick, the held face its plane of symmetry, and (12.11) gives that
    !> strip (2h)^3/h^3 = 8 times the coefficient, half of it per sheet.
-   real(dp), parameter :: shell_gradient_factor = 4.0_dp
+   !> With the tools on the current faces (the default with the contact
+   !> section) the tool holds the sheet's face itself as the section thins,
+   !> and the coefficient is the bar's own (factor 1): measured against the
+   !> continuum's necks, theory §12.7.
+   real(dp), parameter :: reference_faces_gradient_factor = 4.0_dp
 
 contains
 
    !> GRADIENT_COEFFICIENT: c of the strain-gradient term (docs/theory.md
-   !> §12.7, (12.9)) at strain_gradient = 1: shell_gradient_factor times
-   !> the plane-strain bar's tau* h^3/(12 lambda*^6), lambda* = exp(eps*).
+   !> §12.7, (12.9)) at strain_gradient = 1, with the tools on the current
+   !> faces: the plane-strain bar's tau* h^3/(12 lambda*^6), lambda* =
+   !> exp(eps*) (reference_faces_gradient_factor times it with the tools on
+   !> the reference faces: setup_run).
    !> A plane-strain strip bifurcates into a long neck of current wave
    !> number k at 4 mu* - sigma = -sigma (k h)^2/12 (Hill and Hutchinson's
    !> equations, to second order in k h); a bar with the energy
@@ -66,7 +73,7 @@ contains
    pure function gradient_coefficient(tau_star, eps_star, h) result(c)
       real(dp), intent(in) :: tau_star, eps_star, h
       real(dp) :: c
-      c = shell_gradient_factor*tau_star*h**3/12.0_dp*exp(-6.0_dp*min(eps_star, 3.0_dp))
+      c = tau_star*h**3/12.0_dp*exp(-6.0_dp*min(eps_star, 3.0_dp))
    end function gradient_coefficient
 
    !> SETUP_RUN: model and controls of a deck.
@@ -127,8 +134,11 @@ contains
       m%current_faces = d%contact_faces == 'current'
       m%left_edge_free = d%left_edge == 'free'
       m%contact_section = d%normal_stress == 'contact'
-      ! the strain-gradient term (docs/theory.md §12.7)
+      ! the strain-gradient term (docs/theory.md §12.7): the bar's own
+      ! coefficient with the tools on the current faces, the half-neck's
+      ! with the tools on the reference faces
       m%gradient = d%strain_gradient*gradient_coefficient(m%max_load_stress, m%max_load_strain, h)
+      if (.not. m%current_faces) m%gradient = reference_faces_gradient_factor*m%gradient
       if (m%gradient > 0.0_dp) m%gradient_curve = neck_gradient_of(m%material, m%max_load_strain)
       m%back_tension = d%back_tension
       m%lock_depth = d%lock_depth
