@@ -46,6 +46,10 @@ module model
       ! length of the elements split at the exit of the last radius after
       ! locking, mm (0: none)
       real(dp) :: exit_element = 0.0_dp
+      ! the longest element on which the restraining force's maximum (the
+      ! tearing point of the load-maximum criterion) converges at the neck,
+      ! mm (docs/theory.md §7.6): longer ones make it mesh-dependent
+      real(dp) :: neck_element = 0.0_dp
    end type model_type
 
    !> What is applied in one increment: prescribed dofs, dead loads, an end

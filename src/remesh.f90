@@ -46,11 +46,21 @@ module remesh
    public :: split_nodes, split_field, station_weights, split_stations, split_elements, exit_pieces, &
              last_radius_exit, reequilibrate, reequilibration
    public :: reeq_ok, reeq_material, reeq_no_equilibrium, reeq_out_of_memory
-   public :: exit_element_over_h, exit_zone_before, exit_zone_after, exit_resplit_before
+   public :: exit_element_over_h, exit_zone_before, exit_zone_after, exit_resplit_before, &
+             neck_element_current_over_h, neck_element_reference_over_h
 
+   !> The elements on which the restraining force's maximum converges at
+   !> the neck (docs/theory.md §7.6), measured on the continuum-checked
+   !> necks: with the tools on the current faces (the default) 0.75h (80
+   !> uniform elements of 0.48-0.75h tear within 3% of the split meshes'
+   !> 0.08h and within 1% of 160; 40 of 0.95-1.5h up to 20% late), with the
+   !> tools on the reference faces 0.1h (§7.5: 18-45% late on 0.625-0.75h).
+   real(dp), parameter :: neck_element_current_over_h = 0.75_dp
+   real(dp), parameter :: neck_element_reference_over_h = 0.1_dp
    !> The neck's refinement on the default path (docs/theory.md §7.6):
-   !> elements of exit_element_over_h h (the load maximum converges on
-   !> elements of 0.1h at the neck, §7.5) over the material whose current
+   !> elements of exit_element_over_h h with the tools on the reference
+   !> faces (neck_element_current_over_h h on the current faces, which
+   !> leaves the shipped meshes whole) over the material whose current
    !> position lies from exit_zone_before h before the exit of the last
    !> radius on the pulled side to exit_zone_after h after it at the time of
    !> the split.  A clamped pull necks in material that is on that radius

@@ -28,7 +28,8 @@ module setup
    use tool_distance, only: tool_gap
    use bead_builder, only: build_rectangular_bead
    use profile_io, only: read_profile
-   use remesh, only: exit_element_over_h, exit_zone_before, exit_zone_after
+   use remesh, only: exit_element_over_h, exit_zone_before, exit_zone_after, &
+                     neck_element_current_over_h, neck_element_reference_over_h
    use os, only: memory_room
    use section, only: hist_size
    use contact, only: n_chist
@@ -149,7 +150,9 @@ contains
       if (d%refine_exit .and. m%has_tools .and. m%contact_section &
           .and. d%tearing_criterion == 'load_maximum' .and. d%pull_distance > 0.0_dp &
           .and. d%lock_depth > 0.0_dp .and. .not. d%refine_neck .and. .not. (d%refine_element > 0.0_dp)) &
-         m%exit_element = exit_element_over_h*h
+         m%exit_element = merge(neck_element_current_over_h, exit_element_over_h, m%current_faces)*h
+      ! the elements on which the tearing point converges at the neck
+      m%neck_element = merge(neck_element_current_over_h, neck_element_reference_over_h, m%current_faces)*h
       ! the memory of the largest mesh the run can have: with refine_exit
       ! the elements split over the window and the material drawn through it
       n_split = 0

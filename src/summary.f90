@@ -156,11 +156,11 @@ contains
       call put(text, 'tearing_element_over_h', rec%tear_element/h, rec%torn .and. rec%tear_element > 0.0_dp)
       call put(text, 'tearing_length_over_h', ctl%tearing_length_over_h, .true.)
       ! the paper's pointwise criterion has no mesh limit (§7.1); the load
-      ! maximum converges on elements of 0.1h at the neck (§7.5)
+      ! maximum converges on elements of m%neck_element at the neck (§7.6)
       if (.not. rec%torn) then
          call add(text, 'tearing_mesh_dependent = none')
       else if (ctl%tearing_criterion == 'section' .or. &
-               (rec%tear_phase == phase_pull .and. rec%tear_element > 0.1_dp*h*(1.0_dp + 1.0e-6_dp))) then
+               (rec%tear_phase == phase_pull .and. rec%tear_element > m%neck_element*(1.0_dp + 1.0e-6_dp))) then
          call add(text, 'tearing_mesh_dependent = yes')
       else
          call add(text, 'tearing_mesh_dependent = no')
