@@ -449,6 +449,55 @@ def gen_strain_gradient_study(ctx):
     return lambda raw: markdown_table(header, align, rows, raw)
 
 
+# the element counts of the neck-element study (theory 7.6): uniform
+# meshes, refine_exit off, and refine_neck's 0.08h zone at the neck as the
+# fine reference
+NECK_ELEMENT_COUNTS = [40, 80, 160]
+
+
+def gen_neck_element_study(ctx):
+    """docs/theory.md 7.6: on how long elements the tearing point converges
+    at the neck: the GRADIENT_DECKS stopped at tearing on NECK_ELEMENT_COUNTS
+    uniform elements (&sheet refine_exit = .false.; the deck's own
+    increments) and with refine_neck (its zone of 0.08h at the neck), the
+    tearing point over the continuum's neck, the element length at the
+    tearing point, and each uniform mesh's tearing point against
+    refine_neck's."""
+    decks = stopped_decks(ctx, "neck_element_decks", GRADIENT_DECKS)
+    jobs = []
+    for deck in decks:
+        text = read_doc(deck)
+        if "\n&sheet\n" not in text or "n_elements = 80" not in text:
+            raise RuntimeError(f"{deck}: no &sheet line of its own or no n_elements = 80")
+        base = os.path.basename(deck)[:-4]
+        for n in NECK_ELEMENT_COUNTS:
+            jobs.append((f"neck_element_{base}_{n}",
+                         text.replace("n_elements = 80", "n_elements = %d" % n, 1)
+                         .replace("\n&sheet\n", "\n&sheet\n   refine_exit = .false.\n", 1)))
+        jobs.append((f"neck_element_{base}_zone", text.replace("\n&sheet\n", "\n&sheet\n   refine_neck = .true.\n", 1)))
+    res = run_many(ctx.program, jobs, ctx.tmp, ctx.workers)
+    rows = []
+    for deck in decks:
+        base = os.path.basename(deck)[:-4]
+        cont = read_summary(os.path.join(ROOT, "docs", "validation", "continuum", base, "continuum_summary.txt"))
+        neck = real(cont, "max_restraining_force_at_delta_over_h")
+        names = [f"neck_element_{base}_{n}" for n in NECK_ELEMENT_COUNTS] + [f"neck_element_{base}_zone"]
+        tears = [real(res[name], "tearing_delta_over_h") for name in names]
+        elements = [real(res[name], "tearing_element_over_h") for name in names[:-1]]
+        zone = tears[-1]
+        rows.append([base, Num(neck, ".3f")]
+                    + [Num(quotient(t, neck), ".3f") for t in tears]
+                    + [Num(e, ".2f") for e in elements]
+                    + [Num(100.0 * (quotient(t, zone) - 1.0) if quotient(t, zone) is not None else None, "+.1f")
+                       for t in tears[:-1]])
+    header = (["deck (stopped at tearing)", "continuum's neck Δ/h"]
+              + ["/ continuum, %d elements" % n for n in NECK_ELEMENT_COUNTS] + ["/ continuum, refine_neck"]
+              + ["element at the tearing point / h, %d" % n for n in NECK_ELEMENT_COUNTS]
+              + ["against refine_neck, %%, %d" % n for n in NECK_ELEMENT_COUNTS])
+    align = ["---"] + ["---:"] * (1 + 1 + 3 * len(NECK_ELEMENT_COUNTS))
+    return lambda raw: markdown_table(header, align, rows, raw)
+
+
 def pull_force_curve(path):
     """(delta/h, N) of a pull.dat (the program's or the continuum's, columns
     1 and 3; continuum_results' reader), rows with a non-finite value there
@@ -1636,6 +1685,9 @@ GENERATORS = {
                         "the stainless-like sheet on bead C pulled 4.8h against its kept continuum run"),
     "tearing_step_sweep": ("docs/validation.md", gen_tearing_step_sweep,
                            "scripts/convergence.sh -s -f \"1 0.5 0.25 0.125\" on cc_fig5a stopped at tearing"),
+    "neck_element_study": ("docs/theory.md", gen_neck_element_study,
+                           "the clamped cc_ decks, the double bead and the other continuum-checked necks stopped"
+                           " at tearing on 40, 80 and 160 uniform elements and with refine_neck"),
     "strain_gradient_study": ("docs/theory.md", gen_strain_gradient_study,
                               "the clamped cc_ decks and the double bead stopped at tearing,"
                               " strain_gradient x 0.25 to 2, against the continuum's neck"),

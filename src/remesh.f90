@@ -52,8 +52,8 @@ module remesh
    !> The elements on which the restraining force's maximum converges at
    !> the neck (docs/theory.md §7.6), measured on the continuum-checked
    !> necks: with the tools on the current faces (the default) 0.75h (80
-   !> uniform elements of 0.48-0.75h tear within 3% of the split meshes'
-   !> 0.08h and within 1% of 160; 40 of 0.95-1.5h up to 20% late), with the
+   !> uniform elements of 0.48-0.75h tear within 1.5% of refine_neck's zone
+   !> of 0.08h; 40 of 0.95-1.5h up to 22% late: neck_element_study), with the
    !> tools on the reference faces 0.1h (§7.5: 18-45% late on 0.625-0.75h).
    real(dp), parameter :: neck_element_current_over_h = 0.75_dp
    real(dp), parameter :: neck_element_reference_over_h = 0.1_dp

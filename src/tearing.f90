@@ -219,7 +219,7 @@ contains
       ! on coarser elements than m%neck_element the force's maximum comes
       ! late (docs/theory.md §7.6: with the tools on the reference faces
       ! 18-45% on the continuum-check decks at 0.625-0.75h against 0.1h,
-      ! with the current faces up to 20% at 1.25h against 0.75h); the
+      ! with the current faces up to 22% at 1.25h against 0.75h); the
       ! tolerance keeps a zone of exactly that length (its rounded element) quiet
       ! (not in the first pass of refine_neck, which refines there next)
       ! (a maximum of the tension while locking is set by the wrap on the
