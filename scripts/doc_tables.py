@@ -1355,7 +1355,8 @@ def gen_neck_bifurcation(ctx):
 
 
 # the lift traced tool by tool: the decks and the program variants compared
-LIFT_TRACE_OPTIONS = ["--offset", "0.05", "--also", "normal_stress=none", "--also", "n_elements=240"]
+LIFT_TRACE_OPTIONS = ["--offset", "0.05", "--also", "normal_stress=none", "--also", "n_elements=240",
+                      "--also", "contact_faces=reference"]
 # (deck, options): the profile beads kept with --at 0.5,1,2 (their lift
 # departs after 1h; the stepped bead's continuum with --contact-slope 1e4);
 # --offset needs a rectangular bead
