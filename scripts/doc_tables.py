@@ -416,6 +416,14 @@ def matching_value(values, tears, target):
     return "< %g" % pairs[0][0] if target < pairs[0][1] else "> %g" % pairs[-1][0]
 
 
+def continuum_neck(name):
+    """The continuum's neck of the case NAME kept under
+    docs/validation/continuum/NAME/: the pull (delta/h) at its largest
+    restraining force, from its continuum_summary.txt."""
+    cont = read_summary(os.path.join(ROOT, "docs", "validation", "continuum", name, "continuum_summary.txt"))
+    return real(cont, "max_restraining_force_at_delta_over_h")
+
+
 def gen_strain_gradient_study(ctx):
     """docs/theory.md 12.7: the tearing point (tearing_delta_over_h) of the
     GRADIENT_DECKS, 80 elements, stopped at tearing, with strain_gradient =
@@ -436,8 +444,7 @@ def gen_strain_gradient_study(ctx):
     rows = []
     for deck in decks:
         base = os.path.basename(deck)[:-4]
-        cont = read_summary(os.path.join(ROOT, "docs", "validation", "continuum", base, "continuum_summary.txt"))
-        neck = real(cont, "max_restraining_force_at_delta_over_h")
+        neck = continuum_neck(base)
         tears = [real(res[f"gradient_{base}_{v:g}"], "tearing_delta_over_h") for v in GRADIENT_VALUES]
         ratios = [quotient(t, neck) for t in tears]
         rows.append([base, Num(neck, ".3f")] + [Num(t, ".3f") for t in tears]
@@ -479,8 +486,7 @@ def gen_neck_element_study(ctx):
     rows = []
     for deck in decks:
         base = os.path.basename(deck)[:-4]
-        cont = read_summary(os.path.join(ROOT, "docs", "validation", "continuum", base, "continuum_summary.txt"))
-        neck = real(cont, "max_restraining_force_at_delta_over_h")
+        neck = continuum_neck(base)
         names = [f"neck_element_{base}_{n}" for n in NECK_ELEMENT_COUNTS] + [f"neck_element_{base}_zone"]
         tears = [real(res[name], "tearing_delta_over_h") for name in names]
         elements = [real(res[name], "tearing_element_over_h") for name in names[:-1]]
