@@ -173,7 +173,7 @@ contains
    !> 0.2 h, initial_increment 0.05 h (kept within the min/max increments),
    !> lock_depth h1 + r1 (full lock) with a rectangular bead, 0 without one;
    !> with a profile bead it must be given; contact_faces 'current' with
-   !> normal_stress = 'contact', 'reference' with 'none'.
+   !> normal_stress = 'contact' and tools, else 'reference'.
    !>
    !> d  [in,out] the deck as read.
    subroutine resolve_defaults(d)
@@ -187,12 +187,12 @@ contains
 
       if (is_unset(d%length)) d%length = 50.0_dp*h
       if (is_unset(d%strain_gradient)) d%strain_gradient = merge(1.0_dp, 0.0_dp, d%normal_stress == 'contact')
-      ! the tools on the sheet's current faces with the contact section, on
-      ! faces h/2 from the centreline (the paper's model) without it
-      ! (docs/theory.md §5.1, §12.7)
+      ! the tools on the sheet's current faces with the contact section and
+      ! tools, on faces h/2 from the centreline (the paper's model) without
+      ! it (docs/theory.md §5.1, §12.7)
       if (len_trim(d%contact_faces) == 0) then
          d%contact_faces = 'reference'
-         if (d%normal_stress == 'contact') d%contact_faces = 'current'
+         if (d%normal_stress == 'contact' .and. d%bead /= 'none') d%contact_faces = 'current'
       end if
       if (is_unset(d%r1)) d%r1 = bead_a_over_h(1)*h
       if (is_unset(d%r2)) d%r2 = bead_a_over_h(2)*h

@@ -48,7 +48,8 @@ module model
       real(dp) :: exit_element = 0.0_dp
       ! the longest element on which the restraining force's maximum (the
       ! tearing point of the load-maximum criterion) converges at the neck,
-      ! mm (docs/theory.md §7.6): longer ones make it mesh-dependent
+      ! mm (docs/theory.md §7.6): longer ones make it mesh-dependent (set by
+      ! setup_run; 0, a model built otherwise: every element is longer)
       real(dp) :: neck_element = 0.0_dp
    end type model_type
 

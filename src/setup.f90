@@ -151,8 +151,12 @@ contains
           .and. d%tearing_criterion == 'load_maximum' .and. d%pull_distance > 0.0_dp &
           .and. d%lock_depth > 0.0_dp .and. .not. d%refine_neck .and. .not. (d%refine_element > 0.0_dp)) &
          m%exit_element = merge(neck_element_current_over_h, exit_element_over_h, m%current_faces)*h
-      ! the elements on which the tearing point converges at the neck
-      m%neck_element = merge(neck_element_current_over_h, neck_element_reference_over_h, m%current_faces)*h
+      ! the elements on which the tearing point converges at the neck: the
+      ! current faces' length was measured with the contact section and its
+      ! strain-gradient term, the reference faces' rule holds otherwise
+      m%neck_element = neck_element_reference_over_h*h
+      if (m%current_faces .and. m%contact_section .and. m%gradient > 0.0_dp) &
+         m%neck_element = neck_element_current_over_h*h
       ! the memory of the largest mesh the run can have: with refine_exit
       ! the elements split over the window and the material drawn through it
       n_split = 0
