@@ -202,7 +202,8 @@ contains
       if (is_unset(d%h2)) d%h2 = bead_a_over_h(6)*h
       if (is_unset(d%pull_distance)) d%pull_distance = 10.0_dp*h
       ! the neck's zone: elements of 0.08h, below the 0.1h on which the
-      ! load maximum converges (docs/theory.md §7.5)
+      ! load maximum converges with the tools on the reference faces
+      ! (docs/theory.md §7.5; 0.75h on the current faces, §7.6)
       if (d%refine_neck .and. .not. (abs(d%refine_element) > 0.0_dp)) d%refine_element = 0.08_dp
       if (is_unset(d%min_increment)) d%min_increment = 1.0e-6_dp*h
       ! 0.2h resolves the force curves; where the path turns, the error
@@ -605,7 +606,8 @@ contains
       if (.not. (is_positive(d%thickness) .and. is_positive(d%length) .and. d%n_elements >= 2)) return
       half = 0.5_dp*d%length/d%thickness
       ! the first pass pulls 1.5 times the pull: on 80 elements of 0.625h
-      ! the neck comes up to a third late; on longer ones it may not be
+      ! the neck came up to a third late with the tools on the reference
+      ! faces (within 1% on the current faces); on longer ones it may not be
       ! found within that (docs/theory.md §7.5)
       if (2.0_dp*half/real(d%n_elements, dp) > 0.75_dp*(1.0_dp + 1.0e-9_dp)) call warn(at(p, 'sheet', 'n_elements')// &
          ': uniform elements of '//num(2.0_dp*half/real(d%n_elements, dp))//'h: refine_neck finds the neck on'// &

@@ -29,7 +29,8 @@ module passes
    integer, parameter :: pass_bad_output_dir = -1, pass_bad_mesh = -2
 
    !> The first pass pulls up to coarse_pull times the deck's pull: on 80
-   !> elements the neck comes up to a third later than the resolved one
+   !> elements the neck came up to a third later than the resolved one with
+   !> the tools on the reference faces (docs/theory.md §7.5)
    real(dp), parameter :: coarse_pull = 1.5_dp
    !> the first pass's folder in the output directory
    character(len=*), parameter :: coarse_dir = '/coarse'

@@ -27,7 +27,7 @@ module tearing
    !> The tightest tool radius (centreline, in h) the sheet leaves last on
    !> the beads the strain-gradient term's tearing points were checked on
    !> against the continuum is 1.97h (the round bead; 2.62h, 3.28h and
-   !> 4.66h besides, all within 0.89-1.13 of the continuum's necks,
+   !> 4.66h besides, all within 0.97-1.16 of the continuum's necks,
    !> docs/theory.md §12.7): below validated_exit_radius_over_h the
    !> tearing point warns
    real(dp), parameter :: validated_exit_radius_over_h = 1.9_dp
