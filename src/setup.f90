@@ -96,7 +96,7 @@ contains
       class(material_law_type), allocatable :: mat
       class(friction_law_type), allocatable :: fric
       type(tool_type) :: upper, lower_tool
-      logical :: deck_ok
+      logical :: deck_ok, current_neck
       real(dp) :: h
       integer :: n_split
 
@@ -147,16 +147,16 @@ contains
       ! the neck resolved on the default path (docs/theory.md §7.6): a pull
       ! with the contact section and the load-maximum criterion, on a mesh
       ! without a zone of its own
+      ! the elements on which the tearing point converges at the neck: the
+      ! current faces' length was measured with the contact section and its
+      ! strain-gradient term, the reference faces' rule holds otherwise;
+      ! the refinement splits into the former, or into 0.08h below the latter
+      current_neck = m%current_faces .and. m%contact_section .and. m%gradient > 0.0_dp
+      m%neck_element = merge(neck_element_current_over_h, neck_element_reference_over_h, current_neck)*h
       if (d%refine_exit .and. m%has_tools .and. m%contact_section &
           .and. d%tearing_criterion == 'load_maximum' .and. d%pull_distance > 0.0_dp &
           .and. d%lock_depth > 0.0_dp .and. .not. d%refine_neck .and. .not. (d%refine_element > 0.0_dp)) &
-         m%exit_element = merge(neck_element_current_over_h, exit_element_over_h, m%current_faces)*h
-      ! the elements on which the tearing point converges at the neck: the
-      ! current faces' length was measured with the contact section and its
-      ! strain-gradient term, the reference faces' rule holds otherwise
-      m%neck_element = neck_element_reference_over_h*h
-      if (m%current_faces .and. m%contact_section .and. m%gradient > 0.0_dp) &
-         m%neck_element = neck_element_current_over_h*h
+         m%exit_element = merge(m%neck_element, exit_element_over_h*h, current_neck)
       ! the memory of the largest mesh the run can have: with refine_exit
       ! the elements split over the window and the material drawn through it
       n_split = 0

@@ -10,6 +10,7 @@ module summary
    use energy, only: energy_totals, energy_absorbed, stored_plastic_energy, n_energy, ien_elastic, ien_plastic, &
                      ien_penalty, ien_friction, ien_normal_stress, ien_offset_work
    use output, only: write_text_file
+   use tearing, only: neck_unresolved
    use text, only: itoa
    implicit none
    private
@@ -159,8 +160,7 @@ contains
       ! maximum converges on elements of m%neck_element at the neck (§7.6)
       if (.not. rec%torn) then
          call add(text, 'tearing_mesh_dependent = none')
-      else if (ctl%tearing_criterion == 'section' .or. &
-               (rec%tear_phase == phase_pull .and. rec%tear_element > m%neck_element*(1.0_dp + 1.0e-6_dp))) then
+      else if (ctl%tearing_criterion == 'section' .or. neck_unresolved(m, rec)) then
          call add(text, 'tearing_mesh_dependent = yes')
       else
          call add(text, 'tearing_mesh_dependent = no')

@@ -22,7 +22,8 @@ module tearing
    implicit none
    private
    public :: check_localization, check_fold, strain_limit_indicator, first_crossing
-   public :: check_load_maximum, tear_at_snap_back, station_lengths, set_torn, element_length_at
+   public :: check_load_maximum, tear_at_snap_back, station_lengths, set_torn, element_length_at, &
+             neck_unresolved
 
    !> The tightest tool radius (centreline, in h) the sheet leaves last on
    !> the beads the strain-gradient term's tearing points were checked on
@@ -225,8 +226,7 @@ contains
       ! (a maximum of the tension while locking is set by the wrap on the
       ! tool and converges on the uniform mesh: 4.587-4.609h from 80 to 640
       ! elements on tests/regression/decks/lock_tear_hss.nml)
-      if (phase == phase_pull .and. rec%tear_element > m%neck_element*(1.0_dp + 1.0e-6_dp) .and. &
-          rec%neck%refinement /= 'first') then
+      if (neck_unresolved(m, rec) .and. rec%neck%refinement /= 'first') then
          call warn('tearing point on elements of '//num(anint(1.0e3_dp*rec%tear_element/m%thickness)/1.0e3_dp)// &
                    'h at s = '//num(anint(1.0e2_dp*rec%tear_s/m%thickness)/1.0e2_dp)// &
                    'h: it converges on elements of '//num(m%neck_element/m%thickness)// &
@@ -245,6 +245,19 @@ contains
                       'set_torn')
       end if
    end subroutine set_torn
+
+   !> NECK_UNRESOLVED: is the tearing point a load maximum in the pull on
+   !> an element longer than the model's neck_element, on which it does not
+   !> converge (docs/theory.md §7.6)?  (A relative slack keeps an element of
+   !> exactly that length, rounded, resolved; a maximum of the tension while
+   !> locking converges on the uniform mesh, set_torn.)
+   !>  m    [in] model
+   !>  rec  [in] the run's record (tear_phase, tear_element)
+   pure logical function neck_unresolved(m, rec)
+      type(model_type), intent(in) :: m
+      type(run_record), intent(in) :: rec
+      neck_unresolved = rec%tear_phase == phase_pull .and. rec%tear_element > m%neck_element*(1.0_dp + 1.0e-6_dp)
+   end function neck_unresolved
 
    !> CHECK_FOLD: a Gauss station bent to a radius below 1/fold_curvature
    !> thicknesses (|rho| h > fold_curvature) has folded: the shell theory
